@@ -1,0 +1,274 @@
+// WGS84 geodesy: geodetic <-> ECEF (iterated to machine precision), ENU, transverse Mercator
+// (Krueger's series to 6th order in n, as written out by Karney 2011, "Transverse Mercator with
+// an accuracy of a few nanometers"), the terrain's local frame, and DIS Euler angles.
+#include "core/geodesy.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace npsnet::geo {
+namespace {
+
+// --- Krueger series coefficients (functions of the third flattening n) ----------------------
+struct TmCoefficients {
+  double a_rect = 0;             // rectifying radius A (m)
+  std::array<double, 6> alpha{};  // forward: conformal sphere -> TM
+  std::array<double, 6> beta{};   // inverse
+  double e = 0;                  // first eccentricity
+};
+
+TmCoefficients make_tm_coefficients() {
+  TmCoefficients c;
+  const double n = kWgs84F / (2.0 - kWgs84F);
+  const double n2 = n * n, n3 = n2 * n, n4 = n3 * n, n5 = n4 * n, n6 = n5 * n;
+  c.a_rect = kWgs84A / (1.0 + n) * (1.0 + n2 / 4.0 + n4 / 64.0 + n6 / 256.0);
+  c.alpha = {
+      n / 2 - 2 * n2 / 3 + 5 * n3 / 16 + 41 * n4 / 180 - 127 * n5 / 288 + 7891 * n6 / 37800,
+      13 * n2 / 48 - 3 * n3 / 5 + 557 * n4 / 1440 + 281 * n5 / 630 - 1983433 * n6 / 1935360,
+      61 * n3 / 240 - 103 * n4 / 140 + 15061 * n5 / 26880 + 167603 * n6 / 181440,
+      49561 * n4 / 161280 - 179 * n5 / 168 + 6601661 * n6 / 7257600,
+      34729 * n5 / 80640 - 3418889 * n6 / 1995840,
+      212378941 * n6 / 319334400,
+  };
+  c.beta = {
+      n / 2 - 2 * n2 / 3 + 37 * n3 / 96 - n4 / 360 - 81 * n5 / 512 + 96199 * n6 / 604800,
+      n2 / 48 + n3 / 15 - 437 * n4 / 1440 + 46 * n5 / 105 - 1118711 * n6 / 3870720,
+      17 * n3 / 480 - 37 * n4 / 840 - 209 * n5 / 4480 + 5569 * n6 / 90720,
+      4397 * n4 / 161280 - 11 * n5 / 504 - 830251 * n6 / 7257600,
+      4583 * n5 / 161280 - 108847 * n6 / 3991680,
+      20648693 * n6 / 638668800,
+  };
+  c.e = std::sqrt(kWgs84E2);
+  return c;
+}
+
+const TmCoefficients& tm_coefficients() {
+  static const TmCoefficients c = make_tm_coefficients();
+  return c;
+}
+
+// tan(conformal latitude) from tan(geodetic latitude) (Karney 2011, eq. 7-9).
+double taup_from_tau(double tau, double e) {
+  const double tau1 = std::hypot(1.0, tau);
+  const double sig = std::sinh(e * std::atanh(e * tau / tau1));
+  return tau * std::hypot(1.0, sig) - sig * tau1;
+}
+
+// Inverse of taup_from_tau by Newton's method (Karney 2011, eq. 19-21).
+double tau_from_taup(double taup, double e) {
+  const double e2m = 1.0 - e * e;
+  double tau = taup / e2m;
+  for (int i = 0; i < 8; ++i) {
+    const double tp = taup_from_tau(tau, e);
+    const double dtau = (taup - tp) * (1.0 + e2m * tau * tau) /
+                        (e2m * std::hypot(1.0, tau) * std::hypot(1.0, tp));
+    tau += dtau;
+    if (std::abs(dtau) <= 1e-15 * std::max(1.0, std::abs(tau))) break;
+  }
+  return tau;
+}
+
+// Forward TM about the central meridian with no offsets: (lat, dlon) rad -> (x, y) m, and the
+// grid convergence gamma (rad, the azimuth of grid north measured clockwise from true north).
+struct TmRaw {
+  double x, y, gamma;
+};
+
+TmRaw tm_forward_raw(double lat, double dlon) {
+  const auto& c = tm_coefficients();
+  const double tau = std::tan(lat);
+  const double taup = std::abs(lat) >= kPi / 2 ? std::copysign(1e300, lat)
+                                               : taup_from_tau(tau, c.e);
+  const double cl = std::cos(dlon), sl = std::sin(dlon);
+  const double xip = std::atan2(taup, cl);
+  const double etap = std::asinh(sl / std::hypot(taup, cl));
+  double xi = xip, eta = etap, p = 1.0, q = 0.0;
+  for (int j = 1; j <= 6; ++j) {
+    const double a = c.alpha[j - 1];
+    const double s2 = std::sin(2.0 * j * xip), c2 = std::cos(2.0 * j * xip);
+    const double sh = std::sinh(2.0 * j * etap), ch = std::cosh(2.0 * j * etap);
+    xi += a * s2 * ch;
+    eta += a * c2 * sh;
+    p += 2.0 * j * a * c2 * ch;
+    q += 2.0 * j * a * s2 * sh;
+  }
+  const double gamma1 = std::atan(std::tan(xip) * std::tanh(etap));
+  const double gamma = gamma1 + std::atan2(q, p);
+  return {c.a_rect * eta, c.a_rect * xi, gamma};
+}
+
+// Inverse TM (no offsets): (x, y) m -> (lat, dlon) rad.
+void tm_inverse_raw(double x, double y, double& lat, double& dlon) {
+  const auto& c = tm_coefficients();
+  const double xi = y / c.a_rect, eta = x / c.a_rect;
+  double xip = xi, etap = eta;
+  for (int j = 1; j <= 6; ++j) {
+    const double b = c.beta[j - 1];
+    xip -= b * std::sin(2.0 * j * xi) * std::cosh(2.0 * j * eta);
+    etap -= b * std::cos(2.0 * j * xi) * std::sinh(2.0 * j * eta);
+  }
+  const double sxip = std::sin(xip), cxip = std::cos(xip), shetap = std::sinh(etap);
+  const double r = std::hypot(shetap, cxip);
+  dlon = std::atan2(shetap, cxip);
+  const double taup = sxip / r;
+  lat = std::atan(tau_from_taup(taup, c.e));
+}
+
+// Rotation from NED (north, east, down) to ECEF at (lat, lon) in radians: columns N, E, D.
+Mat3 ned_to_ecef(double lat, double lon) {
+  const double sp = std::sin(lat), cp = std::cos(lat), sl = std::sin(lon), cl = std::cos(lon);
+  Mat3 m;
+  m.col(0) = Vec3(-sp * cl, -sp * sl, cp);
+  m.col(1) = Vec3(-sl, cl, 0.0);
+  m.col(2) = Vec3(-cp * cl, -cp * sl, -sp);
+  return m;
+}
+
+// Rz(yaw) * Ry(pitch) * Rx(roll): the aerospace / DIS z-y'-x'' sequence.
+Mat3 zyx_rotation(double yaw, double pitch, double roll) {
+  return (Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(pitch, Vec3::UnitY()) *
+          Eigen::AngleAxisd(roll, Vec3::UnitX()))
+      .toRotationMatrix();
+}
+
+// Inverse of zyx_rotation: (yaw, pitch, roll) in radians.
+Vec3 zyx_angles(const Mat3& r) {
+  const double pitch = std::asin(std::clamp(-r(2, 0), -1.0, 1.0));
+  const double yaw = std::atan2(r(1, 0), r(0, 0));
+  const double roll = std::atan2(r(2, 1), r(2, 2));
+  return {yaw, pitch, roll};
+}
+
+}  // namespace
+
+// --- ECEF -------------------------------------------------------------------------------------
+Vec3 geodetic_to_ecef(const Geodetic& g) {
+  const double lat = deg2rad(g.lat_deg), lon = deg2rad(g.lon_deg);
+  const double sp = std::sin(lat), cp = std::cos(lat);
+  const double n = kWgs84A / std::sqrt(1.0 - kWgs84E2 * sp * sp);
+  return {(n + g.h_m) * cp * std::cos(lon), (n + g.h_m) * cp * std::sin(lon),
+          (n * (1.0 - kWgs84E2) + g.h_m) * sp};
+}
+
+Geodetic ecef_to_geodetic(const Vec3& ecef) {
+  const double x = ecef.x(), y = ecef.y(), z = ecef.z();
+  const double p = std::hypot(x, y);
+  const double lon = (p == 0.0) ? 0.0 : std::atan2(y, x);
+  // Fixed-point iteration on the latitude, started from the geocentric-on-ellipsoid estimate
+  // (Bowring's parametric start). Converges to machine precision in a few steps for any height
+  // above a few km below the surface; h uses the form that is well conditioned at every
+  // latitude, poles included.
+  const double ep2 = kWgs84E2 / (1.0 - kWgs84E2);
+  const double u = std::atan2(z * kWgs84A, p * kWgs84B);
+  double lat = std::atan2(z + ep2 * kWgs84B * std::pow(std::sin(u), 3),
+                          p - kWgs84E2 * kWgs84A * std::pow(std::cos(u), 3));
+  double h = 0.0;
+  for (int i = 0; i < 10; ++i) {
+    const double sp = std::sin(lat), cp = std::cos(lat);
+    const double n = kWgs84A / std::sqrt(1.0 - kWgs84E2 * sp * sp);
+    h = p * cp + z * sp - kWgs84A * std::sqrt(1.0 - kWgs84E2 * sp * sp);
+    const double next = std::atan2(z, p * (1.0 - kWgs84E2 * n / (n + h)));
+    const bool done = std::abs(next - lat) < 1e-15;
+    lat = next;
+    if (done) break;
+  }
+  const double sp = std::sin(lat), cp = std::cos(lat);
+  h = p * cp + z * sp - kWgs84A * std::sqrt(1.0 - kWgs84E2 * sp * sp);
+  return {rad2deg(lat), rad2deg(lon), h};
+}
+
+// --- ENU --------------------------------------------------------------------------------------
+Mat3 enu_rotation(double lat_deg, double lon_deg) {
+  const double lat = deg2rad(lat_deg), lon = deg2rad(lon_deg);
+  const double sp = std::sin(lat), cp = std::cos(lat), sl = std::sin(lon), cl = std::cos(lon);
+  Mat3 r;
+  r.row(0) = Vec3(-sl, cl, 0.0).transpose();
+  r.row(1) = Vec3(-sp * cl, -sp * sl, cp).transpose();
+  r.row(2) = Vec3(cp * cl, cp * sl, sp).transpose();
+  return r;
+}
+
+Vec3 ecef_to_enu(const Vec3& ecef, const Geodetic& origin) {
+  return enu_rotation(origin.lat_deg, origin.lon_deg) * (ecef - geodetic_to_ecef(origin));
+}
+
+Vec3 enu_to_ecef(const Vec3& enu, const Geodetic& origin) {
+  return geodetic_to_ecef(origin) + enu_rotation(origin.lat_deg, origin.lon_deg).transpose() * enu;
+}
+
+// --- Transverse Mercator ----------------------------------------------------------------------
+TransverseMercator::TransverseMercator(double lat0_deg, double lon0_deg, double false_e,
+                                       double false_n)
+    : lat0_(lat0_deg), lon0_(lon0_deg), fe_(false_e), fn_(false_n) {
+  y0_ = tm_forward_raw(deg2rad(lat0_deg), 0.0).y;
+}
+
+Vec2 TransverseMercator::forward(double lat_deg, double lon_deg) const {
+  const double dlon = std::remainder(lon_deg - lon0_, 360.0);
+  const TmRaw r = tm_forward_raw(deg2rad(lat_deg), deg2rad(dlon));
+  return {r.x + fe_, r.y - y0_ + fn_};
+}
+
+Geodetic TransverseMercator::inverse(double x, double y) const {
+  double lat = 0, dlon = 0;
+  tm_inverse_raw(x - fe_, y - fn_ + y0_, lat, dlon);
+  return {rad2deg(lat), std::remainder(lon0_ + rad2deg(dlon), 360.0), 0.0};
+}
+
+// --- Local frame ------------------------------------------------------------------------------
+LocalFrame::LocalFrame(const Geodetic& sw, double width_m, double height_m) {
+  // Find the centre C such that, in the TM centred at C, the SW corner lies at
+  // (-width/2, -height/2). Fixed-point iteration: each step moves C to the point that the
+  // current TM puts half the extent from the SW corner; it converges in a few steps.
+  Geodetic c = sw;
+  for (int i = 0; i < 20; ++i) {
+    const TransverseMercator tm(c.lat_deg, c.lon_deg);
+    const Vec2 s = tm.forward(sw.lat_deg, sw.lon_deg);
+    const Geodetic next = tm.inverse(s.x() + width_m / 2.0, s.y() + height_m / 2.0);
+    const bool done = std::abs(next.lat_deg - c.lat_deg) < 1e-13 &&
+                      std::abs(std::remainder(next.lon_deg - c.lon_deg, 360.0)) < 1e-13;
+    c = next;
+    if (done) break;
+  }
+  const TransverseMercator tm(c.lat_deg, c.lon_deg);
+  const Vec2 s = tm.forward(sw.lat_deg, sw.lon_deg);
+  tm_ = TransverseMercator(c.lat_deg, c.lon_deg, -s.x(), -s.y());
+}
+
+Geodetic LocalFrame::to_geodetic(const Vec3& local) const {
+  Geodetic g = tm_.inverse(local.x(), local.y());
+  g.h_m = local.z();
+  return g;
+}
+
+Vec3 LocalFrame::to_local(const Geodetic& g) const {
+  const Vec2 xy = tm_.forward(g.lat_deg, g.lon_deg);
+  return {xy.x(), xy.y(), g.h_m};
+}
+
+double LocalFrame::convergence_deg(const Geodetic& g) const {
+  const double dlon = std::remainder(g.lon_deg - tm_.lon0(), 360.0);
+  return rad2deg(tm_forward_raw(deg2rad(g.lat_deg), deg2rad(dlon)).gamma);
+}
+
+Vec3 LocalFrame::to_dis_euler(const Vec3& local_pos, double heading_deg, double pitch_deg,
+                              double roll_deg) const {
+  const Geodetic g = to_geodetic(local_pos);
+  // Grid heading -> true heading: grid north lies gamma clockwise of true north.
+  const double true_heading = deg2rad(heading_deg + convergence_deg(g));
+  const Mat3 body_to_ned = zyx_rotation(true_heading, deg2rad(pitch_deg), deg2rad(roll_deg));
+  const Mat3 body_to_ecef = ned_to_ecef(deg2rad(g.lat_deg), deg2rad(g.lon_deg)) * body_to_ned;
+  return zyx_angles(body_to_ecef);
+}
+
+Vec3 LocalFrame::from_dis_euler(const Vec3& local_pos, const Vec3& psi_theta_phi) const {
+  const Geodetic g = to_geodetic(local_pos);
+  const Mat3 body_to_ecef = zyx_rotation(psi_theta_phi.x(), psi_theta_phi.y(), psi_theta_phi.z());
+  const Mat3 body_to_ned =
+      ned_to_ecef(deg2rad(g.lat_deg), deg2rad(g.lon_deg)).transpose() * body_to_ecef;
+  const Vec3 ypr = zyx_angles(body_to_ned);
+  return {wrap360(rad2deg(ypr.x()) - convergence_deg(g)), rad2deg(ypr.y()), rad2deg(ypr.z())};
+}
+
+}  // namespace npsnet::geo

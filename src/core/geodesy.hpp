@@ -1,0 +1,66 @@
+// WGS84 geodesy: geodetic <-> ECEF <-> local ENU, and the transverse Mercator that maps the
+// terrain's local frame (x east, y north, metres, origin at the SW corner) to geodetic.
+// Angles in degrees at the API, heights in metres above the ellipsoid. Accurate to < 1 mm.
+#pragma once
+#include "core/math.hpp"
+
+namespace npsnet::geo {
+
+inline constexpr double kWgs84A = 6378137.0;                 // semi-major axis (m)
+inline constexpr double kWgs84F = 1.0 / 298.257223563;       // flattening
+inline constexpr double kWgs84B = kWgs84A * (1.0 - kWgs84F);  // semi-minor axis (m)
+inline constexpr double kWgs84E2 = kWgs84F * (2.0 - kWgs84F); // first eccentricity squared
+
+struct Geodetic {
+  double lat_deg = 0, lon_deg = 0, h_m = 0;
+};
+
+Vec3 geodetic_to_ecef(const Geodetic& g);
+Geodetic ecef_to_geodetic(const Vec3& ecef);
+
+// Rotation whose rows are the east, north, up unit vectors at (lat, lon): enu = R * (ecef - o).
+Mat3 enu_rotation(double lat_deg, double lon_deg);
+Vec3 ecef_to_enu(const Vec3& ecef, const Geodetic& origin);
+Vec3 enu_to_ecef(const Vec3& enu, const Geodetic& origin);
+
+// Transverse Mercator (Krueger series to 6th order, scale 1 on the central meridian), centred
+// at (lat0, lon0) with false easting/northing so that a chosen point maps to (0, 0).
+class TransverseMercator {
+ public:
+  TransverseMercator() = default;
+  TransverseMercator(double lat0_deg, double lon0_deg, double false_e = 0, double false_n = 0);
+  Vec2 forward(double lat_deg, double lon_deg) const;  // -> (x east, y north) metres
+  Geodetic inverse(double x, double y) const;          // h_m = 0
+  double lat0() const { return lat0_; }
+  double lon0() const { return lon0_; }
+  double false_easting() const { return fe_; }
+  double false_northing() const { return fn_; }
+
+ private:
+  double lat0_ = 0, lon0_ = 0, fe_ = 0, fn_ = 0, y0_ = 0;
+};
+
+// The terrain's local frame: TM centred on the terrain, SW corner at local (0, 0).
+class LocalFrame {
+ public:
+  LocalFrame() = default;
+  // The SW corner's geodetic position and the terrain's extent in metres.
+  LocalFrame(const Geodetic& sw_corner, double width_m, double height_m);
+  Geodetic to_geodetic(const Vec3& local) const;  // z is height above the ellipsoid
+  Vec3 to_local(const Geodetic& g) const;
+  Vec3 to_ecef(const Vec3& local) const { return geodetic_to_ecef(to_geodetic(local)); }
+  Vec3 from_ecef(const Vec3& ecef) const { return to_local(ecef_to_geodetic(ecef)); }
+  // Local heading/pitch/roll (compass deg, deg, deg) <-> DIS Euler psi, theta, phi (rad).
+  Vec3 to_dis_euler(const Vec3& local_pos, double heading_deg, double pitch_deg,
+                    double roll_deg) const;
+  Vec3 from_dis_euler(const Vec3& local_pos, const Vec3& psi_theta_phi) const;  // -> h, p, r deg
+  // Grid convergence at g (deg): the azimuth of local +y (grid north) clockwise from true
+  // north. A local (grid) heading plus this is the true heading.
+  double convergence_deg(const Geodetic& g) const;
+  const TransverseMercator& projection() const { return tm_; }
+
+ private:
+  TransverseMercator tm_;
+};
+
+}  // namespace npsnet::geo
