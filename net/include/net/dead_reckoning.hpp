@@ -1,0 +1,98 @@
+// net/dead_reckoning.hpp — DIS dead reckoning (IEEE 1278.1 Annex E) and the sender's policy.
+// Units: positions ECEF metres (double), velocity m/s and acceleration m/s^2 in world (ECEF)
+// axes, orientation DIS Euler angles (psi, theta, phi) radians, angular velocity rad/s about the
+// entity's body axes, times in seconds.
+//  * dead_reckon(state, algorithm, dt) extrapolates dt seconds from `state`:
+//      1 Static: pose unchanged.              2 FPW: P + V dt, orientation fixed.
+//      3 RPW: P + V dt, orientation rotated by the body rates.
+//      4 RVW: P + V dt + A dt^2/2, rotating.  5 FVW: P + V dt + A dt^2/2, orientation fixed.
+//    0 (other) is treated as static. 6..9 (body axes: FPB RPB RVB FVB) are approximated by
+//    rotating the body-axis velocity/acceleration into world axes with the initial orientation
+//    and then applying 2..5 (exact for FPB).
+//  * DrPublisher: one per local entity. needs_update() says whether an Entity State must go out
+//    now: first time, |true - dead-reckoned| position error > position_threshold_m, orientation
+//    error > orientation_threshold_rad, or heartbeat_s since the last send (>=).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+
+#include "net/pdu.hpp"
+
+namespace net {
+
+enum class DrAlgorithm : std::uint8_t {
+  Other = 0, Static = 1, FPW = 2, RPW = 3, RVW = 4, FVW = 5, FPB = 6, RPB = 7, RVB = 8, FVB = 9,
+};
+
+inline constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+
+// Annex C defaults; every threshold is configurable.
+struct DrThresholds {
+  double position_threshold_m = 1.0;
+  double orientation_threshold_rad = 3.0 * kDegToRad;
+  double heartbeat_s = 5.0;
+  double timeout_s = 12.0;  // remote entity dropped after this long without an update
+  double blend_s = 0.5;     // remote pose converges to a corrected track over this time
+};
+
+struct Euler {
+  double psi = 0, theta = 0, phi = 0;  // radians
+};
+
+struct KinematicState {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();          // ECEF m
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();          // m/s
+  Eigen::Vector3d acceleration = Eigen::Vector3d::Zero();      // m/s^2
+  Euler orientation;                                           // rad
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // rad/s, body axes
+};
+
+struct Pose {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Euler orientation;
+};
+
+// Body -> world rotation Rz(psi) Ry(theta) Rx(phi), and back (theta in [-pi/2, pi/2]).
+Eigen::Quaterniond to_quaternion(const Euler& e) noexcept;
+Euler to_euler(const Eigen::Quaterniond& q) noexcept;
+// Smallest rotation angle (radians, [0, pi]) taking one orientation to the other.
+double orientation_error_rad(const Euler& a, const Euler& b) noexcept;
+
+Pose dead_reckon(const KinematicState& s, DrAlgorithm algorithm, double dt_s) noexcept;
+// Algorithm octet from the wire (values > 9 are treated as 0, static).
+DrAlgorithm dr_algorithm_from_wire(std::uint8_t v) noexcept;
+
+// Conversions between the wire struct and the kinematic state (floats <-> doubles).
+KinematicState kinematic_state(const EntityStatePdu& p) noexcept;
+void write_kinematics(const KinematicState& s, DrAlgorithm algorithm, EntityStatePdu& p) noexcept;
+
+class DrPublisher {
+ public:
+  enum class Reason : std::uint8_t { None, First, Position, Orientation, Heartbeat };
+
+  explicit DrPublisher(DrAlgorithm algorithm = DrAlgorithm::RVW, DrThresholds t = {}) noexcept
+      : algorithm_(algorithm), thresholds_(t) {}
+
+  // Why an update is due at now_s given the entity's true state, or Reason::None.
+  Reason needs_update(const KinematicState& truth, double now_s) const noexcept;
+  // Record that `sent` went out at now_s (call after sending the ESPDU).
+  void mark_sent(const KinematicState& sent, double now_s) noexcept;
+  // What receivers currently believe (the dead-reckoned last sent state at now_s).
+  Pose believed_pose(double now_s) const noexcept;
+
+  DrAlgorithm algorithm() const noexcept { return algorithm_; }
+  const DrThresholds& thresholds() const noexcept { return thresholds_; }
+  bool has_sent() const noexcept { return has_sent_; }
+  double last_sent_s() const noexcept { return last_sent_s_; }
+
+ private:
+  DrAlgorithm algorithm_;
+  DrThresholds thresholds_;
+  KinematicState sent_;
+  double last_sent_s_ = 0;
+  bool has_sent_ = false;
+};
+
+}  // namespace net

@@ -1,0 +1,78 @@
+// net/session.hpp — what a node holds: one UDP transport, our identity (exercise, site,
+// application), a datagram parser that filters other exercises and our own echo, and counters.
+// Contract:
+//  * Session(config) throws std::runtime_error with an actionable message (see transport.hpp).
+//  * send(pdu) encodes into the session's own buffer (no allocation), writes our exercise id
+//    into the header, sends one datagram, and counts it in counters().sent[type] (or
+//    send_failures). The caller sets ids, timestamp and the rest of the header.
+//  * send(builder) sends a datagram packed with DatagramBuilder (counted as one datagram; the
+//    caller's exercise id is used as given).
+//  * poll(visitor) drains every waiting datagram without blocking and hands each accepted PDU to
+//    the visitor (see datagram.hpp for the visitor rules); returns the number of PDUs handed.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "net/codec.hpp"
+#include "net/counters.hpp"
+#include "net/datagram.hpp"
+#include "net/transport.hpp"
+
+namespace net {
+
+struct SessionConfig {
+  TransportConfig transport;
+  std::uint8_t exercise_id = 1;
+  std::uint16_t site = 1;
+  std::uint16_t application = 1;
+  bool ignore_own_echo = true;   // drop PDUs from our (site, application)
+  bool filter_exercise = true;   // drop PDUs of other exercises
+};
+
+class Session {
+ public:
+  explicit Session(const SessionConfig& config);
+
+  template <class Pdu>
+  bool send(const Pdu& pdu) noexcept {
+    auto r = encode(pdu, std::span<std::uint8_t>(buffer_));
+    if (!r) {
+      ++counters_.send_failures;
+      return false;
+    }
+    buffer_[1] = config_.exercise_id;
+    return send_raw(std::span<const std::uint8_t>(buffer_.data(), r.value()),
+                    static_cast<std::uint8_t>(buffer_[2]));
+  }
+  bool send(const DatagramBuilder& datagram) noexcept;
+
+  template <class Visitor>
+  std::size_t poll(Visitor&& visitor) {
+    std::size_t delivered = 0;
+    transport_.poll([&](std::span<const std::uint8_t> d) {
+      delivered += parser_.parse(d, counters_, visitor);
+    });
+    return delivered;
+  }
+
+  // An entity id of ours: (site, application, entity).
+  EntityId entity_id(std::uint16_t entity) const noexcept {
+    return {config_.site, config_.application, entity};
+  }
+  const SessionConfig& config() const noexcept { return config_; }
+  const Counters& counters() const noexcept { return counters_; }
+  Counters& counters() noexcept { return counters_; }
+  UdpTransport& transport() noexcept { return transport_; }
+
+ private:
+  bool send_raw(std::span<const std::uint8_t> bytes, std::uint8_t pdu_type) noexcept;
+
+  SessionConfig config_;
+  UdpTransport transport_;
+  DatagramParser parser_;
+  Counters counters_;
+  std::array<std::uint8_t, kMaxPduSize> buffer_{};
+};
+
+}  // namespace net

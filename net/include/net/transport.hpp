@@ -1,0 +1,94 @@
+// net/transport.hpp — UDP endpoint (Asio) for DIS: multicast, unicast peer or broadcast.
+// Contract:
+//  * parse_udp_url("udp://ADDR:PORT") accepts a dotted IPv4 ADDR and PORT 1..65535; anything
+//    else gives a message saying what is wrong and what is expected. The mode follows from ADDR:
+//    224.0.0.0/4 multicast, 255.255.255.255 or an address ending in .255 broadcast, else
+//    unicast (TransportConfig::mode overrides the guess).
+//  * Multicast: socket bound to GROUP:PORT with SO_REUSEADDR (several processes on one host),
+//    group joined on `iface`, IP_MULTICAST_IF = iface, TTL 1 (configurable), loopback on, so
+//    nodes on one host hear each other (and themselves: filter own echo above this layer).
+//    Unicast: bound to 0.0.0.0:PORT (SO_REUSEADDR), sends to ADDR:PORT.
+//    Broadcast: bound to 0.0.0.0:PORT, SO_BROADCAST, sends to ADDR:PORT.
+//  * Construction throws std::runtime_error with an actionable message (bad URL, bad iface,
+//    bind/join failure). After that nothing throws: send() returns false on failure (the
+//    reason in last_error()), poll() drains what has arrived without blocking.
+//  * Nothing here allocates per call: one receive buffer of 65536 octets is kept.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "net/result.hpp"
+
+namespace net {
+
+enum class UdpMode { Multicast, Unicast, Broadcast };
+std::string_view to_string(UdpMode m) noexcept;
+
+struct UdpUrl {
+  std::string address;  // dotted IPv4
+  std::uint16_t port = 3000;
+  UdpMode mode = UdpMode::Multicast;
+};
+
+inline constexpr std::string_view kDefaultNetUrl = "udp://239.1.2.3:3000";
+inline constexpr std::string_view kDefaultIface = "127.0.0.1";
+
+Result<UdpUrl, std::string> parse_udp_url(std::string_view url);
+
+struct TransportConfig {
+  std::string url{kDefaultNetUrl};
+  std::string iface{kDefaultIface};  // local IPv4 address multicast is sent and joined on
+  std::optional<UdpMode> mode;       // overrides the mode guessed from the address
+  int multicast_ttl = 1;
+  bool multicast_loopback = true;
+  std::size_t max_datagrams_per_poll = 4096;  // bounds one poll() call
+};
+
+class UdpTransport {
+ public:
+  explicit UdpTransport(const TransportConfig& config);  // throws std::runtime_error
+  ~UdpTransport();
+  UdpTransport(UdpTransport&&) noexcept;
+  UdpTransport& operator=(UdpTransport&&) noexcept;
+  UdpTransport(const UdpTransport&) = delete;
+  UdpTransport& operator=(const UdpTransport&) = delete;
+
+  // Sends one datagram to the configured destination. Non-blocking; false on failure.
+  bool send(std::span<const std::uint8_t> datagram) noexcept;
+
+  // Next datagram already received, or empty when none is waiting (never blocks). The span
+  // stays valid until the next receive()/poll().
+  std::optional<std::span<const std::uint8_t>> receive() noexcept;
+
+  // Calls on_datagram(std::span<const std::uint8_t>) for each waiting datagram, at most
+  // max_datagrams_per_poll; returns how many.
+  template <class F>
+  std::size_t poll(F&& on_datagram) {
+    std::size_t n = 0;
+    while (n < max_per_poll_) {
+      auto d = receive();
+      if (!d) break;
+      ++n;
+      on_datagram(*d);
+    }
+    return n;
+  }
+
+  const UdpUrl& destination() const noexcept;
+  const std::string& iface() const noexcept;
+  std::uint16_t local_port() const noexcept;
+  const std::string& last_error() const noexcept;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::size_t max_per_poll_ = 4096;
+};
+
+}  // namespace net

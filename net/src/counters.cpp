@@ -1,0 +1,56 @@
+// counters.cpp — totals and the printable summary.
+#include "net/counters.hpp"
+
+#include <numeric>
+
+namespace net {
+
+std::string pdu_type_name(std::uint8_t t) {
+  switch (static_cast<PduType>(t)) {
+    case PduType::EntityState: return "entity_state";
+    case PduType::Fire: return "fire";
+    case PduType::Detonation: return "detonation";
+    case PduType::Collision: return "collision";
+    case PduType::EntityStateUpdate: return "entity_state_update";
+  }
+  return "type_" + std::to_string(t);
+}
+
+std::uint64_t Counters::decoded_total() const noexcept {
+  return std::accumulate(decoded.begin(), decoded.end(), std::uint64_t{0});
+}
+std::uint64_t Counters::rejected_total() const noexcept {
+  return std::accumulate(rejected.begin(), rejected.end(), std::uint64_t{0});
+}
+std::uint64_t Counters::sent_total() const noexcept {
+  return std::accumulate(sent.begin(), sent.end(), std::uint64_t{0});
+}
+
+std::string Counters::summary() const {
+  std::string s = "datagrams " + std::to_string(datagrams_received) + " pdus " +
+                  std::to_string(pdus_seen) + " | decoded";
+  for (std::size_t t = 0; t < decoded.size(); ++t)
+    if (decoded[t]) s += " " + pdu_type_name(static_cast<std::uint8_t>(t)) + "=" + std::to_string(decoded[t]);
+  s += " | skipped unknown_type=" + std::to_string(skipped_unknown_type) +
+       " version=" + std::to_string(skipped_version) + " | rejected";
+  bool any = false;
+  for (std::size_t e = 1; e < rejected.size(); ++e)
+    if (rejected[e]) {
+      s += " " + std::string(to_string(static_cast<DecodeError>(e))) + "=" + std::to_string(rejected[e]);
+      any = true;
+    }
+  if (!any) s += " none";
+  s += " | ignored own_echo=" + std::to_string(own_echo_ignored) +
+       " other_exercise=" + std::to_string(other_exercise_ignored) + " | sent";
+  any = false;
+  for (std::size_t t = 0; t < sent.size(); ++t)
+    if (sent[t]) {
+      s += " " + pdu_type_name(static_cast<std::uint8_t>(t)) + "=" + std::to_string(sent[t]);
+      any = true;
+    }
+  if (!any) s += " none";
+  s += " datagrams=" + std::to_string(datagrams_sent) + " failures=" + std::to_string(send_failures);
+  return s;
+}
+
+}  // namespace net

@@ -1,0 +1,178 @@
+// Dead reckoning algorithms 1-5 against analytic motion; the sender's threshold policy.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_util.hpp"
+
+using Eigen::Vector3d;
+
+namespace {
+
+net::KinematicState moving() {
+  net::KinematicState s;
+  s.position = {-2707522.0, -4353260.0, 3781450.0};
+  s.velocity = {10.0, -5.0, 2.0};
+  s.acceleration = {1.0, 0.5, -0.25};
+  s.orientation = {0.3, 0.1, -0.05};
+  s.angular_velocity = {0.0, 0.0, 0.2};  // yawing about body z at 0.2 rad/s
+  return s;
+}
+
+}  // namespace
+
+TEST(DeadReckoning, StaticAndOtherDoNotMove) {
+  const auto s = moving();
+  for (auto alg : {net::DrAlgorithm::Static, net::DrAlgorithm::Other}) {
+    const auto p = net::dead_reckon(s, alg, 7.0);
+    EXPECT_EQ(p.position, s.position);
+    EXPECT_NEAR(net::orientation_error_rad(p.orientation, s.orientation), 0.0, 1e-12);
+  }
+}
+
+TEST(DeadReckoning, FpwIsConstantVelocityFixedOrientation) {
+  const auto s = moving();
+  for (double t : {0.0, 0.5, 3.0, 12.0}) {
+    const auto p = net::dead_reckon(s, net::DrAlgorithm::FPW, t);
+    EXPECT_NEAR((p.position - (s.position + s.velocity * t)).norm(), 0.0, 1e-9) << t;
+    EXPECT_NEAR(net::orientation_error_rad(p.orientation, s.orientation), 0.0, 1e-9) << t;
+  }
+}
+
+TEST(DeadReckoning, FvwAddsHalfAtSquared) {
+  const auto s = moving();
+  for (double t : {0.5, 3.0, 12.0}) {
+    const auto p = net::dead_reckon(s, net::DrAlgorithm::FVW, t);
+    const Vector3d expect = s.position + s.velocity * t + 0.5 * s.acceleration * t * t;
+    EXPECT_NEAR((p.position - expect).norm(), 0.0, 1e-8) << t;
+    EXPECT_NEAR(net::orientation_error_rad(p.orientation, s.orientation), 0.0, 1e-9);
+  }
+}
+
+TEST(DeadReckoning, RpwRotatesAboutBodyAxisAtTheGivenRate) {
+  // Level entity (theta = phi = 0) yawing about body z: psi grows linearly, position as FPW.
+  net::KinematicState s = moving();
+  s.orientation = {0.3, 0.0, 0.0};
+  s.angular_velocity = {0.0, 0.0, 0.2};
+  for (double t : {0.5, 2.0, 5.0}) {
+    const auto p = net::dead_reckon(s, net::DrAlgorithm::RPW, t);
+    EXPECT_NEAR(p.orientation.psi, std::remainder(0.3 + 0.2 * t, 2 * M_PI), 1e-9) << t;
+    EXPECT_NEAR(p.orientation.theta, 0.0, 1e-9);
+    EXPECT_NEAR(p.orientation.phi, 0.0, 1e-9);
+    EXPECT_NEAR((p.position - (s.position + s.velocity * t)).norm(), 0.0, 1e-9);
+  }
+}
+
+TEST(DeadReckoning, RvwRollsAboutBodyXWithAcceleration) {
+  // Pitched entity rolling about its own x axis: phi grows, psi/theta stay.
+  net::KinematicState s = moving();
+  s.orientation = {1.0, 0.2, 0.0};
+  s.angular_velocity = {0.1, 0.0, 0.0};
+  const double t = 3.0;
+  const auto p = net::dead_reckon(s, net::DrAlgorithm::RVW, t);
+  EXPECT_NEAR(p.orientation.psi, 1.0, 1e-9);
+  EXPECT_NEAR(p.orientation.theta, 0.2, 1e-9);
+  EXPECT_NEAR(p.orientation.phi, 0.3, 1e-9);
+  const Vector3d expect = s.position + s.velocity * t + 0.5 * s.acceleration * t * t;
+  EXPECT_NEAR((p.position - expect).norm(), 0.0, 1e-8);
+}
+
+TEST(DeadReckoning, RotationMatchesMatrixExponential) {
+  // General rates: R(t) = R0 * exp([w] t), checked against many small steps.
+  net::KinematicState s = moving();
+  s.angular_velocity = {0.05, -0.1, 0.2};
+  const double t = 4.0;
+  Eigen::Quaterniond q = net::to_quaternion(s.orientation);
+  const int steps = 4000;
+  for (int i = 0; i < steps; ++i)
+    q = q * Eigen::Quaterniond(Eigen::AngleAxisd(s.angular_velocity.norm() * t / steps,
+                                                 s.angular_velocity.normalized()));
+  const auto p = net::dead_reckon(s, net::DrAlgorithm::RPW, t);
+  EXPECT_NEAR(net::orientation_error_rad(p.orientation, net::to_euler(q)), 0.0, 1e-9);
+}
+
+TEST(DeadReckoning, EulerQuaternionRoundTrip) {
+  for (const net::Euler e : {net::Euler{0.3, 0.1, -0.05}, net::Euler{-2.5, -1.2, 2.9},
+                             net::Euler{3.0, 0.0, 0.0}}) {
+    const auto back = net::to_euler(net::to_quaternion(e));
+    EXPECT_NEAR(back.psi, e.psi, 1e-12);
+    EXPECT_NEAR(back.theta, e.theta, 1e-12);
+    EXPECT_NEAR(back.phi, e.phi, 1e-12);
+  }
+  EXPECT_NEAR(net::orientation_error_rad({0, 0, 0}, {3 * net::kDegToRad, 0, 0}),
+              3 * net::kDegToRad, 1e-12);
+}
+
+TEST(DeadReckoning, PduConversionKeepsTheState) {
+  net::EntityStatePdu pdu;
+  const auto s = moving();
+  net::write_kinematics(s, net::DrAlgorithm::RVW, pdu);
+  EXPECT_EQ(pdu.dead_reckoning.algorithm, 4);
+  const auto back = net::kinematic_state(pdu);
+  EXPECT_EQ(back.position, s.position);  // doubles on the wire
+  EXPECT_NEAR((back.velocity - s.velocity).norm(), 0.0, 1e-5);
+  EXPECT_NEAR((back.angular_velocity - s.angular_velocity).norm(), 0.0, 1e-6);
+  EXPECT_EQ(net::dr_algorithm_from_wire(200), net::DrAlgorithm::Other);
+}
+
+TEST(DrPublisher, FirstThenPositionThreshold) {
+  net::DrPublisher pub(net::DrAlgorithm::FPW);
+  net::KinematicState truth;
+  truth.position = {1000, 2000, 3000};
+  truth.velocity = {10, 0, 0};
+  EXPECT_EQ(pub.needs_update(truth, 0.0), net::DrPublisher::Reason::First);
+  pub.mark_sent(truth, 0.0);
+  // The truth follows the DR track exactly: nothing due until the heartbeat.
+  for (double t = 0.1; t < 4.95; t += 0.1) {
+    net::KinematicState now = truth;
+    now.position = truth.position + truth.velocity * t;
+    EXPECT_EQ(pub.needs_update(now, t), net::DrPublisher::Reason::None) << t;
+  }
+  // The truth turns: the DR error grows past 1 m and triggers exactly then.
+  net::KinematicState turned = truth;
+  turned.position = truth.position + truth.velocity * 2.0 + Vector3d(0, 0.99, 0);
+  EXPECT_EQ(pub.needs_update(turned, 2.0), net::DrPublisher::Reason::None);
+  turned.position.y() += 0.02;  // 1.01 m off
+  EXPECT_EQ(pub.needs_update(turned, 2.0), net::DrPublisher::Reason::Position);
+}
+
+TEST(DrPublisher, OrientationThresholdAndHeartbeat) {
+  net::DrThresholds th;
+  th.heartbeat_s = 5.0;
+  net::DrPublisher pub(net::DrAlgorithm::FPW, th);
+  net::KinematicState truth;
+  pub.mark_sent(truth, 10.0);
+  net::KinematicState turned = truth;
+  turned.orientation.psi = 2.9 * net::kDegToRad;
+  EXPECT_EQ(pub.needs_update(turned, 11.0), net::DrPublisher::Reason::None);
+  turned.orientation.psi = 3.1 * net::kDegToRad;
+  EXPECT_EQ(pub.needs_update(turned, 11.0), net::DrPublisher::Reason::Orientation);
+  EXPECT_EQ(pub.needs_update(truth, 14.99), net::DrPublisher::Reason::None);
+  EXPECT_EQ(pub.needs_update(truth, 15.0), net::DrPublisher::Reason::Heartbeat);
+}
+
+TEST(DrPublisher, SimulatedRunSendsFarFewerThanEveryTick) {
+  // A vehicle driving a circle of radius 200 m at 10 m/s for 60 s, 10 Hz ticks. Counting sends
+  // and checking the believed pose never strays more than the threshold (plus one tick of motion).
+  net::DrPublisher pub(net::DrAlgorithm::FPW);
+  const double r = 200, v = 10, w = v / r;
+  int sends = 0;
+  double worst = 0;
+  for (int i = 0; i <= 600; ++i) {
+    const double t = i * 0.1;
+    net::KinematicState s;
+    s.position = {r * std::cos(w * t), r * std::sin(w * t), 0};
+    s.velocity = {-v * std::sin(w * t), v * std::cos(w * t), 0};
+    s.orientation.psi = w * t + M_PI / 2;
+    if (pub.needs_update(s, t) != net::DrPublisher::Reason::None) {
+      pub.mark_sent(s, t);
+      ++sends;
+    }
+    worst = std::max(worst, (pub.believed_pose(t).position - s.position).norm());
+  }
+  // Chord error 1 m at v^2/r = 0.5 m/s^2 needs ~2 s per update; heading drift 3 deg at
+  // 0.05 rad/s needs ~1.05 s: so ~57 sends, not 601.
+  EXPECT_GE(sends, 40);
+  EXPECT_LE(sends, 80);
+  EXPECT_LE(worst, 1.0 + 1e-9);
+}

@@ -1,0 +1,182 @@
+// UDP transport and session: URL parsing, loopback multicast between two sessions pinned to
+// 127.0.0.1 (own echo and other exercises ignored), unicast to ourselves on 127.0.0.1.
+// Every wait is bounded (2 s).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "test_util.hpp"
+
+using namespace nettest;
+
+namespace {
+
+net::SessionConfig session_config(std::uint16_t port, std::uint8_t exercise, std::uint16_t site,
+                                  std::uint16_t app) {
+  net::SessionConfig c;
+  c.transport.url = "udp://239.1.2.3:" + std::to_string(port);
+  c.transport.iface = "127.0.0.1";
+  c.exercise_id = exercise;
+  c.site = site;
+  c.application = app;
+  return c;
+}
+
+// Polls `s` until `done()` or 2 s pass.
+template <class Visitor, class Done>
+void poll_until(net::Session& s, Visitor&& v, Done&& done) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (!done() && std::chrono::steady_clock::now() < deadline) {
+    s.poll(v);
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+}
+
+}  // namespace
+
+TEST(UdpUrl, ParsesModes) {
+  auto m = net::parse_udp_url("udp://239.1.2.3:3000");
+  ASSERT_TRUE(m.ok()) << m.error();
+  EXPECT_EQ(m.value().address, "239.1.2.3");
+  EXPECT_EQ(m.value().port, 3000);
+  EXPECT_EQ(m.value().mode, net::UdpMode::Multicast);
+  EXPECT_EQ(net::parse_udp_url("udp://10.0.0.7:4000").value().mode, net::UdpMode::Unicast);
+  EXPECT_EQ(net::parse_udp_url("udp://192.168.1.255:3000").value().mode, net::UdpMode::Broadcast);
+  EXPECT_EQ(net::parse_udp_url("udp://255.255.255.255:3000").value().mode, net::UdpMode::Broadcast);
+  EXPECT_EQ(net::parse_udp_url(net::kDefaultNetUrl).value().port, 3000);
+}
+
+TEST(UdpUrl, BadUrlsSayWhatIsWrong) {
+  struct Case {
+    const char* url;
+    const char* says;
+  };
+  for (const Case& c : {Case{"239.1.2.3:3000", "does not start with udp://"},
+                        Case{"tcp://239.1.2.3:3000", "does not start with udp://"},
+                        Case{"udp://239.1.2.3", "has no :PORT"},
+                        Case{"udp://:3000", "has no address"},
+                        Case{"udp://239.1.2:3000", "not a dotted IPv4 address"},
+                        Case{"udp://example.org:3000", "not a dotted IPv4 address"},
+                        Case{"udp://239.1.2.3:0", "not a number in 1..65535"},
+                        Case{"udp://239.1.2.3:70000", "not a number in 1..65535"},
+                        Case{"udp://239.1.2.3:30x", "not a number in 1..65535"},
+                        Case{"udp://239.1.2.3:", "not a number in 1..65535"}}) {
+    auto r = net::parse_udp_url(c.url);
+    ASSERT_FALSE(r.ok()) << c.url;
+    EXPECT_NE(r.error().find(c.says), std::string::npos) << c.url << " -> " << r.error();
+    EXPECT_NE(r.error().find("expected udp://ADDR:PORT"), std::string::npos) << r.error();
+  }
+}
+
+TEST(UdpTransport, ConstructorErrorsAreActionable) {
+  net::TransportConfig c;
+  c.url = "udp://nonsense";
+  try {
+    net::UdpTransport t(c);
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("udp://nonsense"), std::string::npos) << e.what();
+  }
+  c.url = "udp://239.1.2.3:" + std::to_string(test_port(3));
+  c.iface = "loopback";
+  try {
+    net::UdpTransport t(c);
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("interface address \"loopback\""), std::string::npos)
+        << e.what();
+  }
+  c.iface = "127.0.0.1";
+  c.url = "udp://10.1.2.3:" + std::to_string(test_port(3));
+  c.mode = net::UdpMode::Multicast;  // forced multicast on a unicast address
+  EXPECT_THROW(net::UdpTransport t(c), std::runtime_error);
+}
+
+TEST(UdpTransport, LoopbackMulticastBetweenTwoSessions) {
+  const std::uint16_t port = test_port(0);
+  net::Session a(session_config(port, 1, 1, 1));
+  net::Session b(session_config(port, 1, 1, 2));  // same site, other application
+  net::Session c(session_config(port, 2, 1, 3));  // another exercise
+  EXPECT_EQ(a.transport().destination().mode, net::UdpMode::Multicast);
+  EXPECT_EQ(a.transport().local_port(), port);
+
+  auto es = sample_entity_state(1);
+  es.entity_id = a.entity_id(7);
+  ASSERT_TRUE(a.send(es)) << a.transport().last_error();
+  auto fire = sample_fire();
+  fire.firing_entity_id = c.entity_id(1);
+  ASSERT_TRUE(c.send(fire)) << c.transport().last_error();
+  EXPECT_EQ(a.counters().sent[1], 1u);
+  EXPECT_EQ(c.counters().sent[2], 1u);
+
+  std::vector<net::EntityStatePdu> got_b;
+  int fires_b = 0;
+  auto visit_b = [&](const auto& p) {
+    using T = std::decay_t<decltype(p)>;
+    if constexpr (std::is_same_v<T, net::EntityStatePdu>) got_b.push_back(p);
+    if constexpr (std::is_same_v<T, net::FirePdu>) ++fires_b;
+  };
+  poll_until(b, visit_b, [&] {
+    return !got_b.empty() && b.counters().other_exercise_ignored >= 1;
+  });
+  ASSERT_EQ(got_b.size(), 1u) << b.counters().summary();
+  EXPECT_EQ(got_b[0].entity_id, (net::EntityId{1, 1, 7}));
+  EXPECT_EQ(got_b[0].header.exercise_id, 1);  // written by a.send
+  EXPECT_EQ(net::marking_text(got_b[0].marking), "tank1");
+  EXPECT_EQ(fires_b, 0);
+  EXPECT_EQ(b.counters().other_exercise_ignored, 1u) << b.counters().summary();
+
+  // a hears its own ESPDU (loopback is on) and ignores it; it ignores c's other exercise too.
+  int got_a = 0;
+  poll_until(a, [&](const auto&) { ++got_a; }, [&] {
+    return a.counters().own_echo_ignored >= 1 && a.counters().other_exercise_ignored >= 1;
+  });
+  EXPECT_EQ(got_a, 0);
+  EXPECT_EQ(a.counters().own_echo_ignored, 1u) << a.counters().summary();
+  EXPECT_EQ(a.counters().other_exercise_ignored, 1u) << a.counters().summary();
+  std::printf("a: %s\nb: %s\n", a.counters().summary().c_str(), b.counters().summary().c_str());
+}
+
+TEST(UdpTransport, MultiPduDatagramOverMulticast) {
+  const std::uint16_t port = test_port(1);
+  net::Session a(session_config(port, 1, 1, 1));
+  net::Session b(session_config(port, 1, 2, 1));
+  net::DatagramBuilder d;
+  auto es = sample_entity_state(0);
+  es.header.exercise_id = 1;
+  es.entity_id = a.entity_id(1);
+  auto col = sample_collision();
+  col.header.exercise_id = 1;
+  col.issuing_entity_id = a.entity_id(1);
+  ASSERT_TRUE(d.add(es));
+  ASSERT_TRUE(d.add(col));
+  ASSERT_TRUE(a.send(d));
+  EXPECT_EQ(a.counters().sent[1], 1u);
+  EXPECT_EQ(a.counters().sent[4], 1u);
+  EXPECT_EQ(a.counters().datagrams_sent, 1u);
+  int n = 0;
+  poll_until(b, [&](const auto&) { ++n; }, [&] { return n >= 2; });
+  EXPECT_EQ(n, 2);
+  EXPECT_EQ(b.counters().datagrams_received, 1u);
+}
+
+TEST(UdpTransport, UnicastToOurselvesOnLoopback) {
+  net::TransportConfig c;
+  c.url = "udp://127.0.0.1:" + std::to_string(test_port(2));
+  net::UdpTransport t(c);
+  EXPECT_EQ(t.destination().mode, net::UdpMode::Unicast);
+  const std::vector<std::uint8_t> msg = bytes_of(sample_collision());
+  ASSERT_TRUE(t.send(msg)) << t.last_error();
+  std::vector<std::uint8_t> got;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (got.empty() && std::chrono::steady_clock::now() < deadline) {
+    t.poll([&](std::span<const std::uint8_t> d) { got.assign(d.begin(), d.end()); });
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  EXPECT_EQ(got, msg);
+  // Nothing waiting: poll returns at once with 0.
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_EQ(t.poll([](std::span<const std::uint8_t>) {}), 0u);
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::milliseconds(50));
+}
