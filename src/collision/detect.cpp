@@ -1,0 +1,117 @@
+// Thesis detection (ch. III.C): fixed objects from the gridsquare list below the threshold
+// height, then moving objects through L1 (100 m window), L2 (spheres) and L3 (rays + Haines).
+#include <algorithm>
+#include <cmath>
+
+#include "collision/collision.hpp"
+#include "core/constants.hpp"
+#include "world/pose.hpp"
+
+namespace npsnet::collision {
+namespace {
+
+uint64_t pair_key(int a, int b, bool fixed) {
+  // Moving pairs ordered (lo, hi); fixed contacts flagged in the top bit.
+  const uint64_t lo = static_cast<uint32_t>(fixed ? a : std::min(a, b));
+  const uint64_t hi = static_cast<uint32_t>(fixed ? b : std::max(a, b));
+  return (fixed ? (1ull << 63) : 0) | (lo << 31) | hi;
+}
+
+bool is_munition(const world::World& w, int e) { return w.kinds[w.ents.kind[e]].mobility == world::Mobility::Munition; }
+
+}  // namespace
+
+void Detector::detect(const world::World& w, std::vector<Contact>& out) {
+  const auto& ents = w.ents;
+  const int n = static_cast<int>(ents.size());
+  touching_.clear();
+  candidates_.clear();
+
+  // 1. Fixed objects (p. 9-10): only below the threshold height, from the gridsquare's list.
+  for (int e = 0; e < n; ++e) {
+    if (!ents.active[e]) continue;
+    const Vec3 c = world::entity_centre(w, e);
+    const double agl = ents.pos[e].z() - w.terrain.height(ents.pos[e].x(), ents.pos[e].y());
+    if (agl > thesis::kFixedCheckThresholdHeightM) continue;
+    const double r = world::entity_radius(w, e);
+    auto [first, last] = w.grid.objects_in(w.grid.cell_of(ents.pos[e].x(), ents.pos[e].y()));
+    for (auto it = first; it != last; ++it) {
+      ++stats_.fixed_tests;
+      const int o = static_cast<int>(*it);
+      const Vec3 fc = world::fixed_centre(w, o);
+      const double rr = r + world::fixed_radius(w, o);
+      if ((fc - c).squaredNorm() >= rr * rr) continue;
+      const uint64_t key = pair_key(e, o, true);
+      touching_.push_back(key);
+      Contact k;
+      k.a = e, k.b = o, k.b_fixed = true;
+      const Vec3 d = fc - c;
+      k.normal = d.norm() > 1e-9 ? Vec3(d.normalized()) : Vec3::UnitX();
+      k.point = c + k.normal * std::min(r, d.norm());
+      k.method = "sphere-fixed";
+      candidates_.push_back(k);
+    }
+  }
+
+  // 2. Moving objects. L1 as a sweep over x: pairs with |dx| and |dy| both within 100 m.
+  order_.clear();
+  for (int e = 0; e < n; ++e)
+    if (ents.active[e]) order_.push_back(static_cast<uint32_t>(e));
+  std::sort(order_.begin(), order_.end(), [&](uint32_t a, uint32_t b) { return ents.pos[a].x() < ents.pos[b].x(); });
+  const double win = thesis::kFirstLevelWindowM;
+  for (size_t i = 0; i < order_.size(); ++i) {
+    const int a = static_cast<int>(order_[i]);
+    for (size_t j = i + 1; j < order_.size(); ++j) {
+      const int b = static_cast<int>(order_[j]);
+      if (ents.pos[b].x() - ents.pos[a].x() > win) break;
+      if (std::abs(ents.pos[b].y() - ents.pos[a].y()) > win) continue;
+      ++stats_.l1_pairs;
+      // A munition never meets its own shooter, nor another munition.
+      if (ents.owner[a] == b || ents.owner[b] == a) continue;
+      if (is_munition(w, a) && is_munition(w, b)) continue;
+      // L2: centre distance < sum of radii.
+      const Vec3 ca = world::entity_centre(w, a), cb = world::entity_centre(w, b);
+      const double rr = world::entity_radius(w, a) + world::entity_radius(w, b);
+      if ((cb - ca).squaredNorm() >= rr * rr) continue;
+      ++stats_.l2_pairs;
+      // L3: rays + Haines, from either side. Munitions are points on the scale of a vehicle:
+      // their sphere touching is contact.
+      Vec3 p;
+      ++stats_.l3_tests;
+      bool real;
+      const char* method = "L3-haines";
+      if (is_munition(w, a) || is_munition(w, b)) {
+        real = true;
+        p = is_munition(w, a) ? ca : cb;
+        method = "L2-munition";
+      } else {
+        real = l3_real(w, a, b, p) || l3_real(w, b, a, p);
+      }
+      if (!real) {  // only the spheres touched: tried again next tick
+        ++stats_.l3_rejects;
+        continue;
+      }
+      const int lo = std::min(a, b), hi = std::max(a, b);
+      touching_.push_back(pair_key(lo, hi, false));
+      Contact k;
+      k.a = lo, k.b = hi;
+      const Vec3 d = (lo == a ? cb - ca : ca - cb);
+      k.normal = d.norm() > 1e-9 ? Vec3(d.normalized()) : Vec3::UnitX();
+      k.point = p;
+      k.method = method;
+      candidates_.push_back(k);
+    }
+  }
+
+  // 3. One event per contact episode: report only pairs not touching last tick.
+  std::sort(previous_.begin(), previous_.end());
+  for (const Contact& k : candidates_) {
+    const uint64_t key = pair_key(k.a, k.b, k.b_fixed);
+    if (std::binary_search(previous_.begin(), previous_.end(), key)) continue;
+    out.push_back(k);
+    ++stats_.contacts;
+  }
+  previous_.swap(touching_);
+}
+
+}  // namespace npsnet::collision

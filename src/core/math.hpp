@@ -1,0 +1,32 @@
+// Math types for the node: doubles for world positions, floats where precision allows.
+#pragma once
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <numbers>
+
+namespace npsnet {
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+using Vec3f = Eigen::Vector3f;
+using Mat3 = Eigen::Matrix3d;
+
+inline constexpr double kPi = std::numbers::pi;
+inline constexpr double deg2rad(double d) { return d * kPi / 180.0; }
+inline constexpr double rad2deg(double r) { return r * 180.0 / kPi; }
+inline constexpr double kmh2mps(double v) { return v / 3.6; }
+inline constexpr double mps2kmh(double v) { return v * 3.6; }
+
+// Wrap an angle in degrees to [0, 360).
+inline double wrap360(double deg) {
+  double r = std::fmod(deg, 360.0);
+  return r < 0 ? r + 360.0 : r;
+}
+// Compass heading (0 = north = +y, 90 = east = +x) to a unit vector in the local frame.
+inline Vec2 heading_to_dir(double heading_deg) {
+  const double h = deg2rad(heading_deg);
+  return {std::sin(h), std::cos(h)};
+}
+inline double dir_to_heading(const Vec2& d) { return wrap360(rad2deg(std::atan2(d.x(), d.y()))); }
+inline bool finite(const Vec3& v) { return v.allFinite(); }
+}  // namespace npsnet

@@ -1,0 +1,213 @@
+#include <algorithm>
+#include <cmath>
+
+#include "dynamics/dynamics.hpp"
+#include "world/pose.hpp"
+
+namespace npsnet::dynamics {
+namespace {
+
+using world::Mobility;
+
+// Turn rates (deg/s) and waypoint capture radius: vehicle handling, not thesis constants.
+double turn_rate_dps(Mobility m) {
+  switch (m) {
+    case Mobility::Ground: return 30.0;
+    case Mobility::Ship: return 6.0;
+    case Mobility::Air: return 15.0;
+    default: return 0.0;
+  }
+}
+constexpr double kWaypointCaptureM = 15.0;
+constexpr double kAirMinClearanceM = 30.0;
+
+double turn_towards(double heading, double wanted, double max_step) {
+  double d = wrap360(wanted - heading);
+  if (d > 180) d -= 360;
+  return wrap360(heading + std::clamp(d, -max_step, max_step));
+}
+
+void step_vehicle(world::World& w, int e, double dt) {
+  auto& ents = w.ents;
+  const world::Kind& k = w.kinds[ents.kind[e]];
+  const bool dead = ents.state[e] + 1 >= static_cast<int>(k.states.size());
+  if (dead) {
+    ents.vel[e].setZero();
+    return;
+  }
+  // Steering: fleeing overrides the route; otherwise the current waypoint, if any.
+  double heading = ents.heading_deg[e];
+  double speed = std::min<double>(ents.cruise_mps[e], ents.max_mps[e]);
+  auto& route = ents.route[e];
+  if (ents.flee_until[e] > w.t) {
+    speed = ents.max_mps[e];
+  } else if (!route.empty() && ents.leg[e] < static_cast<int>(route.size())) {
+    const Vec2 here(ents.pos[e].x(), ents.pos[e].y());
+    Vec2 to = route[ents.leg[e]] - here;
+    if (to.norm() < std::max(kWaypointCaptureM, speed * dt)) {
+      ents.leg[e] += 1;
+      if (ents.loop_route[e] && ents.leg[e] >= static_cast<int>(route.size())) ents.leg[e] = 0;
+      if (ents.leg[e] < static_cast<int>(route.size())) to = route[ents.leg[e]] - here;
+    }
+    if (to.norm() > 1e-6) heading = turn_towards(heading, dir_to_heading(to), turn_rate_dps(k.mobility) * dt);
+  }
+  const Vec2 d = heading_to_dir(heading);
+  Vec3 next = ents.pos[e] + Vec3(d.x(), d.y(), 0) * (speed * dt);
+  next.x() = std::clamp(next.x(), 0.0, w.terrain.width_m());
+  next.y() = std::clamp(next.y(), 0.0, w.terrain.depth_m());
+  switch (k.mobility) {
+    case Mobility::Ground:
+      if (w.is_water(next.x(), next.y())) {  // shore: stop and turn away
+        next = ents.pos[e];
+        heading = wrap360(heading + 90);
+      }
+      break;
+    case Mobility::Ship:
+      if (!w.is_water(next.x(), next.y())) {
+        next = ents.pos[e];
+        heading = wrap360(heading + 90);
+      }
+      next.z() = w.water_level_m;
+      break;
+    case Mobility::Air:
+      next.z() = std::max(ents.pos[e].z(), w.terrain.height(next.x(), next.y()) + kAirMinClearanceM);
+      break;
+    default: break;
+  }
+  ents.vel[e] = (next - ents.pos[e]) / dt;
+  ents.pos[e] = next;
+  ents.heading_deg[e] = static_cast<float>(heading);
+  if (k.mobility == Mobility::Ground) follow_terrain(w, e);
+  if (k.mobility == Mobility::Ship || k.mobility == Mobility::Air) ents.pitch_deg[e] = ents.roll_deg[e] = 0;
+  // Fuel: a simple burn in proportion to distance (for the HUD).
+  ents.fuel_l[e] = std::max(0.0f, ents.fuel_l[e] - static_cast<float>(speed * dt * 0.002));
+}
+
+// March the segment from `a` to `b` along the heightfield in steps of half a post; bisect the
+// first sample found below the ground. Returns true with the impact point.
+bool march(const world::Terrain& t, const Vec3& a, const Vec3& b, Vec3& hit) {
+  const double len = (b - a).head<2>().norm();
+  const int n = std::max(1, static_cast<int>(std::ceil(len / (0.5 * t.spacing_m()))));
+  auto below = [&](const Vec3& p) { return p.z() <= t.height(p.x(), p.y()); };
+  Vec3 prev = a;
+  if (below(a)) {
+    hit = a;
+    return true;
+  }
+  for (int i = 1; i <= n; ++i) {
+    const Vec3 p = a + (b - a) * (static_cast<double>(i) / n);
+    if (below(p)) {
+      Vec3 lo = prev, hi = p;
+      for (int it = 0; it < 30; ++it) {
+        const Vec3 mid = 0.5 * (lo + hi);
+        (below(mid) ? hi : lo) = mid;
+      }
+      hit = hi;
+      hit.z() = t.height(hit.x(), hit.y());
+      return true;
+    }
+    prev = p;
+  }
+  return false;
+}
+
+void step_munition(world::World& w, int e, double dt, std::vector<GroundImpact>& impacts) {
+  auto& ents = w.ents;
+  const world::Kind& k = w.kinds[ents.kind[e]];
+  const Vec3 start = ents.pos[e];
+  Vec3 vel = ents.vel[e];
+  if (k.name == "missile" && ents.target[e] >= 0 && ents.active[ents.target[e]]) {
+    // Guided: pure pursuit of the target's sphere centre; within this step's reach it meets it.
+    const Vec3 aim = world::entity_centre(w, ents.target[e]);
+    const Vec3 to = aim - start;
+    const double speed = kmh2mps(k.max_speed_kmh);
+    vel = to.normalized() * speed;
+    if (to.norm() <= speed * dt) {
+      ents.pos[e] = aim - to.normalized() * (0.25 * world::entity_radius(w, ents.target[e]));
+      ents.vel[e] = vel;
+      return;
+    }
+  } else {
+    vel.z() -= kGravity * dt;  // ballistic (semi-implicit Euler)
+  }
+  const Vec3 end = start + vel * dt;
+  ents.vel[e] = vel;
+  ents.heading_deg[e] = static_cast<float>(dir_to_heading(vel.head<2>()));
+  ents.pitch_deg[e] = static_cast<float>(rad2deg(std::atan2(vel.z(), vel.head<2>().norm())));
+  Vec3 hit;
+  if (march(w.terrain, start, end, hit) || !w.terrain.contains(end.x(), end.y())) {
+    if (!w.terrain.contains(end.x(), end.y()) && !march(w.terrain, start, end, hit)) hit = end;
+    ents.pos[e] = hit;
+    ents.active[e] = 0;
+    impacts.push_back({e, hit});
+    return;
+  }
+  ents.pos[e] = end;
+}
+
+}  // namespace
+
+void follow_terrain(world::World& w, int e) {
+  auto& ents = w.ents;
+  const world::Kind& k = w.kinds[ents.kind[e]];
+  const world::Model& m = w.models[k.models[0]];
+  const double half_len = std::max(0.5, 0.5 * static_cast<double>(m.bbox_max.y() - m.bbox_min.y()));
+  const double half_wid = std::max(0.5, 0.5 * static_cast<double>(m.bbox_max.x() - m.bbox_min.x()));
+  const Vec2 f = heading_to_dir(ents.heading_deg[e]);
+  const Vec2 r(f.y(), -f.x());  // right of forward
+  const Vec2 c(ents.pos[e].x(), ents.pos[e].y());
+  auto h = [&](const Vec2& p) { return w.terrain.height(p.x(), p.y()); };
+  const double hf = 0.5 * (h(c + f * half_len + r * half_wid) + h(c + f * half_len - r * half_wid));
+  const double hb = 0.5 * (h(c - f * half_len + r * half_wid) + h(c - f * half_len - r * half_wid));
+  const double hr = 0.5 * (h(c + f * half_len + r * half_wid) + h(c - f * half_len + r * half_wid));
+  const double hl = 0.5 * (h(c + f * half_len - r * half_wid) + h(c - f * half_len - r * half_wid));
+  ents.pos[e].z() = 0.25 * (hf + hb + hr + hl);
+  ents.pitch_deg[e] = static_cast<float>(rad2deg(std::atan2(hf - hb, 2 * half_len)));
+  ents.roll_deg[e] = static_cast<float>(rad2deg(std::atan2(hl - hr, 2 * half_wid)));  // right side down +
+}
+
+void step(world::World& w, double dt, std::vector<GroundImpact>& impacts) {
+  auto& ents = w.ents;
+  for (int e = 0; e < static_cast<int>(ents.size()); ++e) {
+    if (!ents.active[e] || !ents.local[e]) continue;
+    if (w.kinds[ents.kind[e]].mobility == Mobility::Munition) step_munition(w, e, dt, impacts);
+    else step_vehicle(w, e, dt);
+  }
+}
+
+int fire(world::World& w, int shooter, int munition_kind, const Vec3& target_point, int target) {
+  auto& ents = w.ents;
+  const world::Kind& sk = w.kinds[ents.kind[shooter]];
+  if (ents.state[shooter] + 1 >= static_cast<int>(sk.states.size()) || ents.rounds[shooter] <= 0) return -1;
+  const world::Kind& mk = w.kinds[munition_kind];
+  ents.rounds[shooter] -= 1;
+  const Vec3 muzzle = ents.pos[shooter] + Vec3(0, 0, std::max(1.0, sk.height_m * 0.8));
+  Vec3 to = target_point - muzzle;
+  const double v0 = kmh2mps(mk.max_speed_kmh);
+  const double horiz = to.head<2>().norm();
+  Vec3 vel;
+  if (mk.name == "missile") {
+    vel = to.normalized() * v0;
+  } else {
+    // Lowest ballistic arc: tan(theta) = (v^2 - sqrt(v^4 - g(g x^2 + 2 y v^2))) / (g x).
+    const double g = kGravity, y = to.z();
+    const double disc = v0 * v0 * v0 * v0 - g * (g * horiz * horiz + 2 * y * v0 * v0);
+    const double theta = disc < 0 || horiz < 1e-6 ? kPi / 4 : std::atan((v0 * v0 - std::sqrt(disc)) / (g * horiz));
+    const Vec2 d = horiz < 1e-6 ? heading_to_dir(ents.heading_deg[shooter]) : Vec2(to.head<2>() / horiz);
+    vel = Vec3(d.x() * std::cos(theta), d.y() * std::cos(theta), std::sin(theta)) * v0;
+  }
+  char id[16];
+  std::snprintf(id, sizeof id, "m%d", static_cast<int>(ents.size()) % 100000000);
+  const int m = ents.add(id, munition_kind, muzzle, static_cast<float>(dir_to_heading(vel.head<2>())),
+                         static_cast<float>(mk.radius_m));
+  ents.vel[m] = vel;
+  ents.target[m] = target;
+  ents.aim[m] = target_point;
+  ents.owner[m] = shooter;
+  ents.snapshots[m] = ents.snapshots[shooter];
+  ents.node[m] = ents.node[shooter];
+  ents.local[m] = ents.local[shooter];
+  return m;
+}
+
+}  // namespace npsnet::dynamics

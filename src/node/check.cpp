@@ -1,0 +1,70 @@
+// `npsnet check FILE...`: every problem as FILE:LINE: field: message, exit 0 or 2.
+#include <cstdio>
+#include <fstream>
+#include <toml++/toml.h>
+
+#include "node/options.hpp"
+#include "world/scenario.hpp"
+
+namespace npsnet::node {
+
+namespace {
+
+std::string lower_ext(const std::filesystem::path& p) {
+  std::string e = p.extension().string();
+  for (auto& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+void check_one(const std::filesystem::path& f, std::vector<world::Problem>& problems) {
+  const std::string fname = f.string();
+  if (!std::filesystem::exists(f)) {
+    problems.push_back({fname, 0, "file", "file not found"});
+    return;
+  }
+  const std::string ext = lower_ext(f);
+  try {
+    if (ext == ".toml") {
+      // A scenario has a [world] table; anything else is a kinds file.
+      toml::table t;
+      try {
+        t = toml::parse_file(fname);
+      } catch (const toml::parse_error& e) {
+        problems.push_back({fname, static_cast<int>(e.source().begin.line), "syntax", std::string(e.description())});
+        return;
+      }
+      if (t.contains("world") || t.contains("vehicle")) {
+        const auto sc = world::load_scenario(f);
+        (void)world::build_world(sc);
+      } else {
+        world::ModelLibrary models;
+        (void)world::KindTable::load(f, models);
+      }
+    } else if (ext == ".csv") {
+      // Objects against the bundled kinds; map checks need a terrain, which a scenario gives.
+      world::ModelLibrary models;
+      const auto kinds = world::KindTable::load(world::default_kinds_file(), models);
+      world::Terrain big(2, 2, 1e9, {0, 0, 0, 0}, {});
+      world::FixedObjects objs;
+      world::load_objects_csv(f, kinds, big, -1e18, objs, problems);
+    } else if (ext == ".obj") {
+      (void)world::load_obj(f);
+    } else {
+      (void)world::Terrain::load(f, {});
+    }
+  } catch (const world::InputError& e) {
+    problems.insert(problems.end(), e.problems().begin(), e.problems().end());
+  }
+}
+
+}  // namespace
+
+int check_command(const std::vector<std::string>& files) {
+  std::vector<world::Problem> problems;
+  for (const auto& f : files) check_one(f, problems);
+  for (const auto& p : problems) std::printf("%s\n", p.str().c_str());
+  if (problems.empty()) std::printf("ok: %zu file(s)\n", files.size());
+  return problems.empty() ? 0 : 2;
+}
+
+}  // namespace npsnet::node

@@ -1,0 +1,61 @@
+// npsnet: one NPSNET node. `npsnet run ...` simulates a scenario; `npsnet check FILE...` validates.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+
+#include "node/options.hpp"
+
+int main(int argc, char** argv) {
+  using npsnet::node::RunOptions;
+  CLI::App app{"NPSNET node: networked battlefield simulation with real-time collision detection"};
+  app.require_subcommand(1);
+  RunOptions o;
+  auto* run = app.add_subcommand("run", "run a scenario (headless unless --window)");
+  run->add_option("--scenario", o.scenario, "scenario TOML (default scenarios/default.toml)");
+  auto* sec = run->add_option("--seconds", o.seconds, "run length in scenario seconds")->check(CLI::PositiveNumber);
+  run->add_option("--frames", o.frames, "run length in ticks")->check(CLI::PositiveNumber)->excludes(sec);
+  run->add_option("--dt", o.dt, "fixed step in seconds, 0.01 to 1 (default 0.1)")->check(CLI::Range(0.01, 1.0));
+  run->add_option("--events", o.events, "event log, JSON Lines (default <snapshots>/events.jsonl)");
+  run->add_option("--snapshots", o.snapshots, "folder for snapshot PNGs (default screenshots/)");
+  run->add_flag("--window", o.window, "show a GLFW window (needs a display)");
+  run->add_flag("--realtime", o.realtime, "pace ticks to the wall clock");
+  run->add_option("--net", o.net, "off, or udp://ADDR:PORT (default group 239.1.2.3:3000)");
+  run->add_option("--iface", o.iface, "local address multicast is sent and joined on (default 127.0.0.1)");
+  run->add_option("--node", o.node, "this node's number: drives the vehicles with node = N")->check(CLI::Range(1, 65535));
+  run->add_option("--exercise", o.exercise, "DIS exercise id (default 1)")->check(CLI::Range(1, 255));
+  run->add_option("--site", o.site, "DIS site (default 1)")->check(CLI::Range(1, 65535));
+  run->add_option("--app", o.app, "DIS application (default = node)")->check(CLI::Range(1, 65535));
+  run->add_option("--start-at", o.start_at, "start the scenario clock at this UNIX time");
+  run->add_option("--snapshot-every", o.snapshot_every, "also write a frame every S scenario seconds")->check(CLI::PositiveNumber);
+  std::string size;
+  run->add_option("--size", size, "snapshot size WxH (default 960x540)");
+  run->add_flag("--no-render", o.no_render, "do not render snapshots (event log only)");
+  run->add_flag("--quiet", o.quiet, "no progress on stderr");
+  std::vector<std::string> files;
+  auto* check = app.add_subcommand("check", "validate scenario, terrain, object, kind and model files");
+  check->add_option("FILE", files, "files to check")->required();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : 2;
+  }
+  if (!size.empty()) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 1 || h < 1 ||
+        w > 8192 || h > 8192) {
+      std::fprintf(stderr, "--size: '%s' must be WxH with 1..8192 each, e.g. 960x540\n", size.c_str());
+      return 2;
+    }
+    o.width = w, o.height = h;
+  }
+  try {
+    if (*run) return npsnet::node::run_command(o);
+    return npsnet::node::check_command(files);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "npsnet: internal error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,34 @@
+// Command-line contract of `npsnet` (shared/ARCHITECTURE.md): `run` and `check`.
+#pragma once
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace npsnet::node {
+
+struct RunOptions {
+  std::filesystem::path scenario;              // default: <source>/scenarios/default.toml
+  std::optional<double> seconds;
+  std::optional<long> frames;
+  double dt = 0.1;                             // s (the thesis's 10 Hz)
+  std::filesystem::path events;                // default: <snapshots>/../events.jsonl? see run.cpp
+  std::filesystem::path snapshots = "screenshots";
+  bool window = false, realtime = false;
+  std::string net = "off";
+  std::string iface = "127.0.0.1";
+  int node = 1, exercise = 1, site = 1, app = -1;  // app: default = node
+  std::optional<double> start_at;
+  std::optional<double> snapshot_every;
+  int width = 960, height = 540;
+  bool no_render = false;
+  bool quiet = false;
+};
+
+// Returns the process exit code: 0 ok, 2 bad input, 1 internal failure.
+int run_command(const RunOptions& o);
+int check_command(const std::vector<std::string>& files);
+
+std::filesystem::path source_dir();  // where the bundled data lives (scenarios/, models/, shaders/)
+
+}  // namespace npsnet::node

@@ -1,0 +1,82 @@
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <thread>
+
+#include "node/options.hpp"
+#include "node/simulation.hpp"
+#include "world/scenario.hpp"
+
+namespace npsnet::node {
+
+std::filesystem::path source_dir() { return NPSNET_SOURCE_DIR; }
+
+namespace {
+void print_problems(const world::InputError& e) {
+  for (const auto& p : e.problems()) std::fprintf(stderr, "%s\n", p.str().c_str());
+}
+double wall_now() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+int run_command(const RunOptions& opt) {
+  RunOptions o = opt;
+  if (o.scenario.empty()) o.scenario = source_dir() / "scenarios" / "default.toml";
+  if (o.window) {
+    std::fprintf(stderr, "--window: the GLFW window is not built yet (issue 4)\n");
+    return 2;
+  }
+  if (o.net != "off") {
+    std::fprintf(stderr, "--net %s: networking is not built yet (issue 5); use --net off\n", o.net.c_str());
+    return 2;
+  }
+  if (o.start_at && (*o.start_at - wall_now() > 3600 || !std::isfinite(*o.start_at))) {
+    std::fprintf(stderr, "--start-at %.3f: more than an hour from now\n", *o.start_at);
+    return 2;
+  }
+  // Load and check everything before writing anything.
+  world::Scenario sc;
+  world::World w;
+  try {
+    sc = world::load_scenario(o.scenario);
+    w = world::build_world(sc);
+  } catch (const world::InputError& e) {
+    print_problems(e);
+    return 2;
+  }
+  const long ticks = o.frames ? *o.frames
+                              : static_cast<long>(std::ceil((o.seconds ? *o.seconds : sc.duration_s) / o.dt - 1e-9));
+  if (o.events.empty()) o.events = o.snapshots / "events.jsonl";
+  EventLog log(o.events);
+  if (!o.quiet)
+    std::fprintf(stderr, "npsnet: %s: %zu fixed objects, %zu vehicles, %ld ticks of %.3f s\n", o.scenario.string().c_str(),
+                 w.fixed.size(), w.ents.size(), ticks, o.dt);
+  Simulation sim(std::move(w), sc, log, o.dt);
+  if (o.start_at)
+    while (wall_now() < *o.start_at) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  const auto t0 = std::chrono::steady_clock::now();
+  long next_progress = ticks / 10;
+  for (long i = 0; i < ticks; ++i) {
+    sim.tick();
+    if (o.realtime) std::this_thread::sleep_until(t0 + std::chrono::duration<double>((i + 1) * o.dt));
+    if (!o.quiet && i + 1 >= next_progress && ticks >= 10) {
+      std::fprintf(stderr, "npsnet: t = %.1f s (%ld%%)\n", sim.world().t, (i + 1) * 100 / ticks);
+      next_progress += ticks / 10;
+    }
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  log.flush();
+  if (!o.quiet) {
+    std::fprintf(stderr, "npsnet: done: %ld ticks in %.2f s wall (%.3f ms/tick); events -> %s\n", ticks, wall,
+                 1000 * wall / std::max(1L, ticks), o.events.string().c_str());
+    for (const auto& [k, n] : log.counts()) std::fprintf(stderr, "  %-12s %d\n", k.c_str(), n);
+    const auto& s = sim.stats();
+    std::fprintf(stderr, "  collision tests: fixed %lld, L1 %lld, L2 %lld, L3 %lld (rejected %lld), contacts %lld\n",
+                 (long long)s.fixed_tests, (long long)s.l1_pairs, (long long)s.l2_pairs, (long long)s.l3_tests,
+                 (long long)s.l3_rejects, (long long)s.contacts);
+  }
+  return 0;
+}
+
+}  // namespace npsnet::node

@@ -1,0 +1,150 @@
+#include "node/simulation.hpp"
+
+#include <algorithm>
+
+#include "dynamics/autonomous.hpp"
+#include "world/pose.hpp"
+
+namespace npsnet::node {
+
+namespace {
+nlohmann::json vec(const Vec3& p) {
+  auto r = [](double v) { return std::round(v * 1000.0) / 1000.0; };
+  return nlohmann::json::array({r(p.x()), r(p.y()), r(p.z())});
+}
+double round3(double v) { return std::round(v * 1000.0) / 1000.0; }
+}  // namespace
+
+Simulation::Simulation(world::World w, const world::Scenario& s, EventLog& log, double dt)
+    : w_(std::move(w)), log_(log), dt_(dt) {
+  for (const auto& f : s.fires) {
+    Scheduled sc{f.t_s, find_entity(f.shooter), w_.kinds.find(f.munition), -1, -1, Vec3::Zero(), f.target};
+    if (f.target_m) {
+      sc.point = Vec3(f.target_m->x(), f.target_m->y(), w_.terrain.height(f.target_m->x(), f.target_m->y()));
+      sc.target_name = "";
+    } else {
+      sc.target_entity = find_entity(f.target);
+      if (sc.target_entity < 0)
+        for (size_t o = 0; o < w_.fixed.size(); ++o)
+          if (w_.fixed.id[o] == f.target) sc.target_fixed = static_cast<int>(o);
+    }
+    schedule_.push_back(sc);
+  }
+  std::stable_sort(schedule_.begin(), schedule_.end(), [](const Scheduled& a, const Scheduled& b) { return a.t < b.t; });
+}
+
+int Simulation::find_entity(const std::string& id) const {
+  for (size_t e = 0; e < w_.ents.size(); ++e)
+    if (w_.ents.id[e] == id) return static_cast<int>(e);
+  return -1;
+}
+
+nlohmann::json Simulation::base(const char* type) const {
+  return {{"event", type}, {"t", round3(w_.t)}, {"frame", w_.frame}};
+}
+
+int Simulation::fire(int shooter, int munition_kind, const Vec3& point, int target_entity, const std::string& target_name) {
+  const int m = dynamics::fire(w_, shooter, munition_kind, point, target_entity);
+  if (m < 0) return -1;
+  fired_.push_back(m);
+  auto ev = base("fire");
+  ev["shooter"] = w_.ents.id[shooter];
+  ev["munition"] = w_.kinds[munition_kind].name;
+  ev["round"] = w_.ents.id[m];
+  ev["target"] = target_name;
+  ev["point"] = vec(point);
+  log_.write(ev);
+  if (target_entity >= 0) threatened(shooter, point, target_entity);
+  return m;
+}
+
+void Simulation::threatened(int shooter, const Vec3&, int victim) {
+  const auto r = dynamics::react_to_fire(w_, victim, shooter);
+  if (r == dynamics::Reaction::ReturnFire) {
+    const int he = w_.kinds.find("he_round");
+    if (he >= 0) fire(victim, he, w_.ents.pos[shooter], shooter, w_.ents.id[shooter]);
+  }
+}
+
+void Simulation::scheduled_fires() {
+  while (next_fire_ < schedule_.size() && schedule_[next_fire_].t <= w_.t + 1e-9) {
+    const Scheduled& s = schedule_[next_fire_++];
+    if (s.shooter < 0 || s.munition < 0) continue;
+    Vec3 point = s.point;
+    if (s.target_entity >= 0) point = world::entity_centre(w_, s.target_entity);
+    if (s.target_fixed >= 0) point = world::fixed_centre(w_, s.target_fixed);
+    fire(s.shooter, s.munition, point, s.target_entity, s.target_name);
+  }
+}
+
+void Simulation::log_changes() {
+  const auto& ents = w_.ents;
+  for (const auto& c : changes_.collisions) {
+    auto ev = base("collision");
+    ev["a"] = ents.id[c.a];
+    ev["b"] = c.b_fixed ? w_.fixed.id[c.b] : ents.id[c.b];
+    ev["a_kind"] = w_.kinds[ents.kind[c.a]].name;
+    ev["b_kind"] = c.b_fixed ? w_.kinds[w_.fixed.kind[c.b]].name : w_.kinds[ents.kind[c.b]].name;
+    ev["point"] = vec(c.point);
+    ev["closing_speed_mps"] = round3(c.closing_speed_mps);
+    ev["angle_deg"] = round3(c.angle_deg);
+    ev["method"] = c.method;
+    ev["outcome_a"] = world::result_name(c.result_a);
+    ev["outcome_b"] = world::result_name(c.result_b);
+    log_.write(ev);
+  }
+  for (const auto& d : changes_.detonations) {
+    auto ev = base("detonation");
+    ev["point"] = vec(d.point);
+    ev["munition"] = w_.kinds[ents.kind[d.munition]].name;
+    ev["round"] = ents.id[d.munition];
+    ev["shooter"] = ents.owner[d.munition] >= 0 ? ents.id[ents.owner[d.munition]] : "";
+    ev["target"] = d.target >= 0 ? ents.id[d.target] : "";
+    ev["result"] = d.result;
+    log_.write(ev);
+  }
+  for (const auto& c : changes_.craters) {
+    auto ev = base("crater");
+    ev["point"] = vec(c.point);
+    ev["radius_m"] = c.radius_m;
+    ev["depth_m"] = c.depth_m;
+    log_.write(ev);
+  }
+  for (const auto& d : applied_.damage) {
+    auto ev = base("damage");
+    const world::Kind& k = d.fixed ? w_.kinds[w_.fixed.kind[d.index]] : w_.kinds[ents.kind[d.index]];
+    ev["object"] = d.fixed ? w_.fixed.id[d.index] : ents.id[d.index];
+    ev["kind"] = k.name;
+    ev["from_state"] = k.states[d.from_state];
+    ev["to_state"] = k.states[d.to_state];
+    log_.write(ev);
+  }
+}
+
+void Simulation::tick() {
+  fired_.clear();
+  changes_.clear();
+  applied_.clear();
+  contacts_.clear();
+  impacts_.clear();
+  scheduled_fires();
+  dynamics::step(w_, dt_, impacts_);
+  detector_.detect(w_, contacts_);
+  collision::respond(w_, contacts_, changes_);
+  for (const auto& im : impacts_) collision::detonate(w_, im.munition, im.point, -1, changes_);
+  world::apply(w_, changes_, applied_);
+  log_changes();
+  // Autonomous vehicles near a detonation they did not cause have been fired upon.
+  for (const auto& d : changes_.detonations) {
+    const int shooter = w_.ents.owner[d.munition];
+    for (int e = 0; e < static_cast<int>(w_.ents.size()); ++e)
+      if (w_.ents.autonomous[e] && e != shooter && (w_.ents.pos[e] - d.point).norm() < dynamics::kThreatRadiusM)
+        threatened(shooter, d.point, e);
+  }
+  if (on_tick) on_tick(TickReport{changes_, applied_, fired_});
+  log_.flush();
+  w_.frame += 1;
+  w_.t = w_.frame * dt_;
+}
+
+}  // namespace npsnet::node

@@ -1,0 +1,63 @@
+// One node's simulation: the fixed-step tick of shared/ARCHITECTURE.md, without I/O pacing.
+//   scheduled fires -> dynamics::step -> collision::detect -> collision::respond (+ detonations)
+//   -> world::apply -> events.
+// Every collision, damage change, fire, detonation and crater goes to the event log.
+#pragma once
+#include <functional>
+#include <vector>
+
+#include "collision/collision.hpp"
+#include "dynamics/dynamics.hpp"
+#include "node/event_log.hpp"
+#include "world/changes.hpp"
+#include "world/scenario.hpp"
+
+namespace npsnet::node {
+
+// What one tick did (valid during the on_tick callback).
+struct TickReport {
+  const world::Changes& changes;
+  const world::Applied& applied;
+  const std::vector<int>& fired;  // munitions launched this tick
+};
+
+class Simulation {
+ public:
+  Simulation(world::World w, const world::Scenario& s, EventLog& log, double dt);
+  void tick();
+  world::World& world() { return w_; }
+  const world::World& world() const { return w_; }
+  double dt() const { return dt_; }
+  const collision::DetectStats& stats() const { return detector_.stats(); }
+  std::function<void(const TickReport&)> on_tick;  // renderer, snapshots, network
+
+  // Fires `munition_kind` from `shooter` at an entity or a point, logging the fire event.
+  int fire(int shooter, int munition_kind, const Vec3& point, int target_entity, const std::string& target_name);
+  int find_entity(const std::string& id) const;
+
+ private:
+  void scheduled_fires();
+  void threatened(int shooter, const Vec3& at, int victim);
+  nlohmann::json base(const char* type) const;
+  void log_changes();
+
+  world::World w_;
+  EventLog& log_;
+  double dt_;
+  struct Scheduled {
+    double t;
+    int shooter, munition, target_entity, target_fixed;
+    Vec3 point;
+    std::string target_name;
+  };
+  std::vector<Scheduled> schedule_;
+  size_t next_fire_ = 0;
+  collision::Detector detector_;
+  std::vector<collision::Contact> contacts_;
+  std::vector<dynamics::GroundImpact> impacts_;
+  std::vector<int> fired_;
+  world::Changes changes_;
+  world::Applied applied_;
+};
+
+}  // namespace npsnet::node

@@ -1,0 +1,70 @@
+#include <algorithm>
+
+#include "world/changes.hpp"
+
+namespace npsnet::world {
+
+const char* result_name(Result r) {
+  switch (r) {
+    case Result::None: return "none";
+    case Result::Slowed: return "slowed";
+    case Result::Bounce: return "bounce";
+    case Result::Stop: return "stop";
+    case Result::Kill: return "kill";
+    case Result::Explode: return "explode";
+    case Result::DamageFixed: return "damage_fixed";
+    case Result::DestroyFixed: return "destroy_fixed";
+  }
+  return "?";
+}
+
+void apply(World& w, const Changes& c, Applied& out) {
+  auto& ents = w.ents;
+  for (const auto& ch : c.entities) {
+    const int e = ch.entity;
+    if (e < 0 || e >= static_cast<int>(ents.size())) continue;
+    const Kind& k = w.kinds[ents.kind[e]];
+    const int last = static_cast<int>(k.states.size()) - 1;
+    if (ch.to_state > ents.state[e]) {
+      const int to = std::min(ch.to_state, last);
+      out.damage.push_back({false, e, ents.state[e], to});
+      ents.state[e] = static_cast<uint8_t>(to);
+      if (to == last && k.mobility != Mobility::Munition) {
+        out.killed.push_back(e);
+        ents.vel[e].setZero();
+        ents.cruise_mps[e] = 0;
+      }
+    }
+    ents.pos[e] += ch.shift;
+    if (ch.set_vel) ents.vel[e] = ch.vel;
+    if (ch.cruise_mps >= 0) ents.cruise_mps[e] = ch.cruise_mps;
+    if (ch.set_vel && ch.vel.head<2>().norm() > 1e-3 && k.mobility != Mobility::Munition)
+      ents.heading_deg[e] = static_cast<float>(dir_to_heading(ch.vel.head<2>()));
+    if (ch.deactivate) ents.active[e] = 0;
+  }
+  for (const auto& ch : c.fixed) {
+    const int o = ch.object;
+    if (o < 0 || o >= static_cast<int>(w.fixed.size())) continue;
+    const int last = static_cast<int>(w.kinds[w.fixed.kind[o]].states.size()) - 1;
+    const int to = std::min(ch.to_state, last);
+    if (to > w.fixed.state[o]) {
+      out.damage.push_back({true, o, w.fixed.state[o], to});
+      w.fixed.state[o] = static_cast<uint8_t>(to);
+    }
+  }
+  for (const auto& cr : c.craters) {
+    const PostRect r = w.terrain.crater(cr.point.x(), cr.point.y(), cr.radius_m, cr.depth_m);
+    if (r.empty()) continue;
+    out.terrain_patches.push_back(r);
+    // Fixed objects and ground vehicles standing in the bowl settle onto the new ground.
+    const int c0 = w.grid.cell_of(cr.point.x() - cr.radius_m, cr.point.y() - cr.radius_m);
+    const int c1 = w.grid.cell_of(cr.point.x() + cr.radius_m, cr.point.y() + cr.radius_m);
+    for (int j = c0 / w.grid.cols(); j <= c1 / w.grid.cols(); ++j)
+      for (int i = c0 % w.grid.cols(); i <= c1 % w.grid.cols(); ++i) {
+        auto [b, e] = w.grid.objects_in(j * w.grid.cols() + i);
+        for (auto p = b; p != e; ++p) w.fixed.pos[*p].z() = w.terrain.height(w.fixed.pos[*p].x(), w.fixed.pos[*p].y());
+      }
+  }
+}
+
+}  // namespace npsnet::world

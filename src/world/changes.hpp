@@ -1,0 +1,81 @@
+// The only way the world changes after dynamics: a list of changes that collision::respond and
+// collision::detonate produce, applied in one place by world::apply (damage-state swaps, craters,
+// velocity changes, deaths). Also the records the node turns into events.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "world/world.hpp"
+
+namespace npsnet::world {
+
+// Outcome of a collision for one side (the event log's outcome_a / outcome_b).
+enum class Result : uint8_t { None, Slowed, Bounce, Stop, Kill, Explode, DamageFixed, DestroyFixed };
+const char* result_name(Result r);
+
+struct EntityChange {
+  int entity = -1;
+  int to_state = -1;          // -1: unchanged; states only ever move forward
+  bool set_vel = false;
+  Vec3 vel{0, 0, 0};          // new velocity (m/s) when set_vel
+  float cruise_mps = -1;      // new wanted speed; -1: unchanged
+  Vec3 shift{0, 0, 0};        // separation move (m)
+  bool deactivate = false;    // munition spent
+};
+
+struct FixedChange {
+  int object = -1;
+  int to_state = -1;
+};
+
+struct Crater {
+  Vec3 point{0, 0, 0};
+  double radius_m = 0, depth_m = 0;
+};
+
+// A collision decided this tick (one per contact episode).
+struct CollisionRecord {
+  int a = -1, b = -1;
+  bool b_fixed = false;
+  Vec3 point{0, 0, 0};
+  double closing_speed_mps = 0, angle_deg = 0;
+  std::string method;
+  Result result_a = Result::None, result_b = Result::None;
+};
+
+struct DetonationRecord {
+  int munition = -1;
+  int target = -1;            // entity hit, or -1 for the ground
+  Vec3 point{0, 0, 0};
+  std::string result;         // "entity_impact", "ground_impact"
+};
+
+struct Changes {
+  std::vector<EntityChange> entities;
+  std::vector<FixedChange> fixed;
+  std::vector<Crater> craters;
+  std::vector<CollisionRecord> collisions;
+  std::vector<DetonationRecord> detonations;
+  void clear() {
+    entities.clear(), fixed.clear(), craters.clear(), collisions.clear(), detonations.clear();
+  }
+};
+
+// What apply did, for the event log and the renderer.
+struct DamageRecord {
+  bool fixed = false;
+  int index = -1;
+  int from_state = 0, to_state = 0;
+};
+struct Applied {
+  std::vector<DamageRecord> damage;
+  std::vector<PostRect> terrain_patches;
+  std::vector<int> killed;    // entities that became wrecks this tick
+  void clear() { damage.clear(), terrain_patches.clear(), killed.clear(); }
+};
+
+// Applies the changes in order; a state never moves backwards; a crater lowers the terrain and
+// re-seats fixed objects standing in it. Appends what happened to `out`.
+void apply(World& w, const Changes& c, Applied& out);
+
+}  // namespace npsnet::world

@@ -1,0 +1,135 @@
+#include "world/kinds.hpp"
+
+#include "core/constants.hpp"
+#include "world/toml_util.hpp"
+
+namespace npsnet::world {
+
+const char* mobility_name(Mobility m) {
+  switch (m) {
+    case Mobility::Fixed: return "fixed";
+    case Mobility::Ground: return "ground";
+    case Mobility::Ship: return "ship";
+    case Mobility::Air: return "air";
+    case Mobility::Munition: return "munition";
+  }
+  return "?";
+}
+
+int Kind::state_index(const std::string& s) const {
+  for (size_t i = 0; i < states.size(); ++i)
+    if (states[i] == s) return static_cast<int>(i);
+  return -1;
+}
+
+namespace {
+// Table 2 (p. 11): the speed limit of a vehicle kind that does not set its own.
+double table2_limit_kmh(Mobility m) {
+  switch (m) {
+    case Mobility::Ground: return thesis::kTable2GroundKmh;
+    case Mobility::Ship: return thesis::kTable2ShipKmh;
+    case Mobility::Air: return thesis::kTable2AirKmh;
+    default: return 0;
+  }
+}
+}  // namespace
+
+KindTable KindTable::load(const std::filesystem::path& file, ModelLibrary& models) {
+  const std::string fname = file.string();
+  toml::table root = parse_toml_file(fname);
+  std::vector<Problem> problems;
+  TomlReader r(fname, problems);
+  KindTable out;
+  out.file_ = file;
+  for (const auto& [key, node] : root) {
+    const std::string name(key.str());
+    const toml::table* t = node.as_table();
+    if (!t) {
+      r.problem(&node, name, "each kind must be a table [name]");
+      continue;
+    }
+    const int tl = r.line(t);
+    const std::string p = name + ".";
+    r.unknown_keys(*t, p, {"mobility", "mass_kg", "radius_m", "states", "models", "explosive", "max_speed_kmh",
+                           "dis_type", "blast_radius_m", "crater_radius_m", "crater_depth_m", "rounds", "fuel_l", "resistance"});
+    Kind k;
+    k.name = name;
+    if (auto m = r.string(*t, "mobility", p + "mobility", true, tl)) {
+      static const std::pair<const char*, Mobility> names[] = {{"fixed", Mobility::Fixed}, {"ground", Mobility::Ground},
+          {"ship", Mobility::Ship}, {"air", Mobility::Air}, {"munition", Mobility::Munition}};
+      bool found = false;
+      for (auto& [s, v] : names)
+        if (*m == s) k.mobility = v, found = true;
+      if (!found) r.problem(t->get("mobility"), p + "mobility", "must be fixed, ground, ship, air or munition (got '" + *m + "')");
+    }
+    if (auto v = r.number(*t, "mass_kg", p + "mass_kg", true, tl)) {
+      if (*v <= 0) r.problem(t->get("mass_kg"), p + "mass_kg", "must be positive (got " + std::to_string(*v) + ")");
+      k.mass_kg = *v;
+    }
+    auto states = r.strings(*t, "states", p + "states", true, tl);
+    auto files = r.strings(*t, "models", p + "models", true, tl);
+    if (states && files && states->size() != files->size())
+      r.problem(t->get("models"), p + "models", "needs one model per state (" + std::to_string(states->size()) +
+                                                    " states, " + std::to_string(files->size()) + " models)");
+    else if (states && files) {
+      k.states = *states;
+      for (size_t i = 0; i < files->size(); ++i) {
+        try {
+          k.models.push_back(models.load(file.parent_path() / (*files)[i]));
+        } catch (const InputError& e) {
+          // The model's own problems, then where the kinds file named it.
+          for (const auto& q : e.problems()) problems.push_back(q);
+          r.problem(t->get("models"), p + "models", "cannot load '" + (*files)[i] + "'");
+        }
+      }
+    }
+    if (auto v = r.number(*t, "radius_m", p + "radius_m", false, tl)) {
+      if (*v <= 0) r.problem(t->get("radius_m"), p + "radius_m", "must be positive");
+      k.radius_m = *v;
+    } else if (!k.models.empty()) {
+      // "A slightly smaller value than the actual radius of the object is used" (p. 14).
+      k.radius_m = thesis::kBoundingRadiusFraction * models[k.models[0]].true_radius;
+    }
+    if (!k.models.empty()) k.height_m = models[k.models[0]].bbox_max.z();
+    for (int mi : k.models) {
+      const Model& m = models[mi];
+      const float r0 = models[k.models[0]].true_radius;
+      k.radius_by_state.push_back(static_cast<float>(k.radius_m) * (r0 > 0 ? m.true_radius / r0 : 1.0f));
+      k.centre_by_state.push_back(m.centre);
+    }
+    k.explosive = r.boolean(*t, "explosive", p + "explosive").value_or(false);
+    k.max_speed_kmh = r.number(*t, "max_speed_kmh", p + "max_speed_kmh", false, tl).value_or(table2_limit_kmh(k.mobility));
+    if (k.max_speed_kmh < 0) r.problem(t->get("max_speed_kmh"), p + "max_speed_kmh", "must not be negative");
+    if (auto d = r.numbers(*t, "dis_type", p + "dis_type", 7, 7, true, tl)) {
+      const auto& v = *d;
+      k.dis = {uint8_t(v[0]), uint8_t(v[1]), uint16_t(v[2]), uint8_t(v[3]), uint8_t(v[4]), uint8_t(v[5]), uint8_t(v[6])};
+    }
+    k.blast_radius_m = r.number(*t, "blast_radius_m", p + "blast_radius_m", false, tl).value_or(0);
+    k.crater_radius_m = r.number(*t, "crater_radius_m", p + "crater_radius_m", false, tl).value_or(0);
+    k.crater_depth_m = r.number(*t, "crater_depth_m", p + "crater_depth_m", false, tl).value_or(0);
+    k.rounds = static_cast<int>(r.number(*t, "rounds", p + "rounds", false, tl).value_or(0));
+    k.fuel_l = r.number(*t, "fuel_l", p + "fuel_l", false, tl).value_or(0);
+    k.resistance = r.number(*t, "resistance", p + "resistance", false, tl).value_or(1.0);
+    if (k.resistance <= 0) r.problem(t->get("resistance"), p + "resistance", "must be positive");
+    if (k.mobility == Mobility::Munition && k.max_speed_kmh <= 0)
+      r.problem(tl, p + "max_speed_kmh", "a munition needs its speed");
+    out.kinds_.push_back(std::move(k));
+  }
+  if (out.kinds_.empty() && problems.empty()) problems.push_back({fname, 0, "kinds", "no kinds defined"});
+  if (!problems.empty()) throw InputError(std::move(problems));
+  return out;
+}
+
+int KindTable::find(const std::string& name) const {
+  for (size_t i = 0; i < kinds_.size(); ++i)
+    if (kinds_[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+std::string KindTable::names() const {
+  std::string s;
+  for (const auto& k : kinds_) s += (s.empty() ? "" : ", ") + k.name;
+  return s;
+}
+
+}  // namespace npsnet::world

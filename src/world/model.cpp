@@ -1,0 +1,101 @@
+#include "world/model.hpp"
+
+#include <tiny_obj_loader.h>
+
+#include <regex>
+
+#include "world/error.hpp"
+
+namespace npsnet::world {
+namespace {
+
+// tinyobjloader reports "... line N ..." in some messages; lift N into our FILE:LINE form.
+int line_in(const std::string& msg) {
+  static const std::regex re(R"(line\s*[:=]?\s*(\d+))", std::regex::icase);
+  std::smatch m;
+  return std::regex_search(msg, m, re) ? std::stoi(m[1]) : 0;
+}
+
+// Newell's normal: equals the plane of the first three vertices for a planar polygon, and stays
+// defined when those three happen to be collinear.
+Vec3f newell_normal(const Model& m, const Face& f) {
+  Vec3f n(0, 0, 0);
+  for (uint32_t k = 0; k < f.count; ++k) {
+    const Vec3f& a = m.vertices[m.face_vertices[f.first + k]];
+    const Vec3f& b = m.vertices[m.face_vertices[f.first + (k + 1) % f.count]];
+    n.x() += (a.y() - b.y()) * (a.z() + b.z());
+    n.y() += (a.z() - b.z()) * (a.x() + b.x());
+    n.z() += (a.x() - b.x()) * (a.y() + b.y());
+  }
+  const float len = n.norm();
+  return len > 0 ? Vec3f(n / len) : Vec3f(0, 0, 0);  // zero: degenerate face (zero area)
+}
+
+}  // namespace
+
+Model load_obj(const std::filesystem::path& file) {
+  const std::string fname = file.string();
+  if (!std::filesystem::exists(file)) throw InputError(fname, 0, "model", "file not found");
+  tinyobj::ObjReaderConfig cfg;
+  cfg.triangulate = false;  // Haines' test works on the polygon as modelled
+  cfg.mtl_search_path = file.parent_path().string();
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(fname, cfg)) {
+    const std::string e = reader.Error();
+    throw InputError(fname, line_in(e), "model", e.empty() ? "cannot parse OBJ" : e);
+  }
+  const auto& attrib = reader.GetAttrib();
+  const auto& mats = reader.GetMaterials();
+  Model m;
+  m.file = fname;
+  const size_t nv = attrib.vertices.size() / 3;
+  if (nv == 0) throw InputError(fname, 0, "model", "no vertices");
+  m.vertices.reserve(nv);
+  for (size_t i = 0; i < nv; ++i) {
+    Vec3f v(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
+    if (!v.allFinite()) throw InputError(fname, 0, "model", "vertex " + std::to_string(i + 1) + " is not finite");
+    m.vertices.push_back(v);
+  }
+  for (const auto& shape : reader.GetShapes()) {
+    size_t at = 0;
+    for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+      const unsigned n = shape.mesh.num_face_vertices[f];
+      Face face;
+      face.first = static_cast<uint32_t>(m.face_vertices.size());
+      face.count = n;
+      for (unsigned k = 0; k < n; ++k) {
+        const int vi = shape.mesh.indices[at + k].vertex_index;
+        if (vi < 0 || static_cast<size_t>(vi) >= nv)
+          throw InputError(fname, 0, "model", "face " + std::to_string(f + 1) + " of '" + shape.name + "' uses a missing vertex");
+        m.face_vertices.push_back(static_cast<uint32_t>(vi));
+      }
+      at += n;
+      const int mid = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
+      if (mid >= 0 && static_cast<size_t>(mid) < mats.size())
+        face.color = Vec3f(mats[mid].diffuse[0], mats[mid].diffuse[1], mats[mid].diffuse[2]);
+      if (n < 3) continue;  // points and lines are not surfaces
+      face.normal = newell_normal(m, face);
+      m.faces.push_back(face);
+    }
+  }
+  if (m.faces.empty()) throw InputError(fname, 0, "model", "no faces with 3 or more vertices");
+  m.bbox_min = m.bbox_max = m.vertices.front();
+  for (const auto& v : m.vertices) {
+    m.bbox_min = m.bbox_min.cwiseMin(v);
+    m.bbox_max = m.bbox_max.cwiseMax(v);
+  }
+  m.centre = 0.5f * (m.bbox_min + m.bbox_max);
+  for (const auto& v : m.vertices) m.true_radius = std::max(m.true_radius, (v - m.centre).norm());
+  return m;
+}
+
+int ModelLibrary::load(const std::filesystem::path& file) {
+  const std::string key = std::filesystem::weakly_canonical(file).string();
+  for (size_t i = 0; i < paths_.size(); ++i)
+    if (paths_[i] == key) return static_cast<int>(i);
+  models_.push_back(load_obj(file));
+  paths_.push_back(key);
+  return static_cast<int>(models_.size() - 1);
+}
+
+}  // namespace npsnet::world

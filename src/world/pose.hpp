@@ -1,0 +1,29 @@
+// Poses: model space (x right, y forward, z up, origin at the ground-contact centre) to the
+// local frame, and bounding-sphere centres of entities and fixed objects in their current state.
+#pragma once
+#include "world/world.hpp"
+
+namespace npsnet::world {
+
+// Compass heading (deg, clockwise from north), pitch (deg, nose up), roll (deg, right side down).
+Mat3 pose_rotation(double heading_deg, double pitch_deg, double roll_deg);
+
+inline Vec3 entity_centre(const World& w, size_t e) {
+  const Kind& k = w.kinds[w.ents.kind[e]];
+  const auto& ents = w.ents;
+  return ents.pos[e] + pose_rotation(ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]) *
+                           k.centre_by_state[ents.state[e]].cast<double>();
+}
+inline double entity_radius(const World& w, size_t e) {
+  return w.kinds[w.ents.kind[e]].radius_by_state[w.ents.state[e]];
+}
+inline Vec3 fixed_centre(const World& w, size_t o) {
+  const Kind& k = w.kinds[w.fixed.kind[o]];
+  const Vec3f& c = k.centre_by_state[w.fixed.state[o]];
+  return w.fixed.pos[o] + pose_rotation(w.fixed.heading_deg[o], 0, 0) * c.cast<double>();
+}
+inline double fixed_radius(const World& w, size_t o) {
+  return w.kinds[w.fixed.kind[o]].radius_by_state[w.fixed.state[o]];
+}
+
+}  // namespace npsnet::world

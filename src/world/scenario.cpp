@@ -1,0 +1,377 @@
+#include "world/scenario.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <unordered_set>
+
+#include "world/random.hpp"
+#include "world/toml_util.hpp"
+
+namespace npsnet::world {
+
+std::filesystem::path default_kinds_file() { return std::filesystem::path(NPSNET_DATA_DIR) / "models" / "kinds.toml"; }
+
+namespace {
+
+void check_id(TomlReader& r, const toml::node* n, const std::string& field, const std::string& id) {
+  if (id.empty()) r.problem(n, field, "must not be empty");
+  if (id.size() > kMaxIdLength)
+    r.problem(n, field, "'" + id + "' is " + std::to_string(id.size()) + " characters; at most " +
+                            std::to_string(kMaxIdLength) + " (it travels as the DIS marking)");
+  for (char c : id)
+    if (static_cast<unsigned char>(c) < 33 || static_cast<unsigned char>(c) > 126) {
+      r.problem(n, field, "'" + id + "' must be printable ASCII without spaces");
+      break;
+    }
+}
+
+}  // namespace
+
+Scenario load_scenario(const std::filesystem::path& file) {
+  const std::string fname = file.string();
+  toml::table root = parse_toml_file(fname);
+  std::vector<Problem> problems;
+  TomlReader r(fname, problems);
+  Scenario s;
+  s.file = file;
+  const auto dir = file.parent_path();
+  r.unknown_keys(root, "", {"duration_s", "world", "vehicle", "fixed", "fire", "background", "collision_method"});
+  if (auto v = r.number(root, "duration_s", "duration_s", false, 0)) {
+    if (*v <= 0) r.problem(root.get("duration_s"), "duration_s", "must be positive");
+    s.duration_s = *v;
+  }
+  if (auto m = r.string(root, "collision_method", "collision_method", false, 0)) {
+    if (*m != "thesis") r.problem(root.get("collision_method"), "collision_method", "must be \"thesis\" (got '" + *m + "')");
+    s.collision_method = *m;
+  }
+  const toml::table* w = root["world"].as_table();
+  if (!w) {
+    r.problem(root.get("world"), "world", "missing [world] table");
+  } else {
+    const int wl = r.line(w);
+    r.unknown_keys(*w, "world.", {"terrain", "objects", "kinds", "origin_geodetic", "water_level_m"});
+    if (auto t = r.string(*w, "terrain", "world.terrain", true, wl)) {
+      s.terrain = dir / *t;
+      if (!std::filesystem::exists(s.terrain)) r.problem(w->get("terrain"), "world.terrain", "file not found: " + s.terrain.string());
+    }
+    if (auto o = r.string(*w, "objects", "world.objects", false, wl)) {
+      s.objects = dir / *o;
+      if (!std::filesystem::exists(s.objects)) r.problem(w->get("objects"), "world.objects", "file not found: " + s.objects.string());
+    }
+    if (auto k = r.string(*w, "kinds", "world.kinds", false, wl)) {
+      s.kinds = dir / *k;
+      if (!std::filesystem::exists(s.kinds)) r.problem(w->get("kinds"), "world.kinds", "file not found: " + s.kinds.string());
+    } else {
+      s.kinds = default_kinds_file();
+    }
+    if (auto g = r.numbers(*w, "origin_geodetic", "world.origin_geodetic", 2, 3, false, wl)) {
+      const auto& v = *g;
+      if (std::abs(v[0]) > 90 || std::abs(v[1]) > 180)
+        r.problem(w->get("origin_geodetic"), "world.origin_geodetic", "latitude must be within +-90 and longitude +-180 degrees");
+      s.origin = {v[0], v[1], v.size() > 2 ? v[2] : 0.0};
+    }
+    if (auto l = r.number(*w, "water_level_m", "world.water_level_m", false, wl)) s.water_level_m = *l;
+  }
+  std::set<std::string> ids;
+  auto unique = [&](const toml::node* n, const std::string& field, const std::string& id) {
+    if (!ids.insert(id).second) r.problem(n, field, "duplicate id '" + id + "'");
+  };
+  if (const toml::node* vn = root.get("vehicle")) {
+    const toml::array* arr = vn->as_array();
+    if (!arr) r.problem(vn, "vehicle", "must be an array of tables [[vehicle]]");
+    for (size_t i = 0; arr && i < arr->size(); ++i) {
+      const toml::table* t = (*arr)[i].as_table();
+      const std::string p = "vehicle[" + std::to_string(i) + "].";
+      if (!t) {
+        r.problem(&(*arr)[i], p, "must be a table");
+        continue;
+      }
+      const int tl = r.line(t);
+      r.unknown_keys(*t, p, {"id", "kind", "position_m", "heading_deg", "speed_kmh", "max_speed_kmh", "waypoints_m",
+                             "node", "autonomous", "snapshots"});
+      VehicleSpec v;
+      v.line = tl;
+      if (auto id = r.string(*t, "id", p + "id", true, tl)) {
+        check_id(r, t->get("id"), p + "id", *id);
+        unique(t->get("id"), p + "id", *id);
+        v.id = *id;
+      }
+      v.kind = r.string(*t, "kind", p + "kind", true, tl).value_or("");
+      if (auto pos = r.numbers(*t, "position_m", p + "position_m", 2, 3, true, tl)) {
+        v.pos = {(*pos)[0], (*pos)[1], pos->size() > 2 ? (*pos)[2] : 0.0};
+        v.has_z = pos->size() > 2;
+      }
+      v.heading_deg = r.number(*t, "heading_deg", p + "heading_deg", false, tl).value_or(0);
+      v.speed_kmh = r.number(*t, "speed_kmh", p + "speed_kmh", false, tl).value_or(0);
+      if (v.speed_kmh < 0) r.problem(t->get("speed_kmh"), p + "speed_kmh", "must not be negative");
+      v.max_speed_kmh = r.number(*t, "max_speed_kmh", p + "max_speed_kmh", false, tl);
+      if (v.max_speed_kmh && *v.max_speed_kmh <= 0) r.problem(t->get("max_speed_kmh"), p + "max_speed_kmh", "must be positive");
+      if (const toml::node* wn = t->get("waypoints_m")) {
+        const toml::array* wa = wn->as_array();
+        bool ok = wa != nullptr;
+        for (size_t k = 0; ok && k < wa->size(); ++k) {
+          const toml::array* pt = (*wa)[k].as_array();
+          ok = pt && pt->size() == 2 && (*pt)[0].is_number() && (*pt)[1].is_number();
+          if (ok) {
+            Vec2 q((*pt)[0].value<double>().value_or(0), (*pt)[1].value<double>().value_or(0));
+            if (!q.allFinite()) {
+              r.problem(wn, p + "waypoints_m", "must be finite");
+              ok = true;
+              break;
+            }
+            v.waypoints.push_back(q);
+          }
+        }
+        if (!ok) r.problem(wn, p + "waypoints_m", "must be an array of [x, y] pairs");
+      }
+      if (auto n = r.number(*t, "node", p + "node", false, tl)) {
+        if (*n < 1 || *n > 65535 || *n != std::floor(*n)) r.problem(t->get("node"), p + "node", "must be an integer 1-65535");
+        v.node = static_cast<int>(*n);
+      }
+      v.autonomous = r.boolean(*t, "autonomous", p + "autonomous").value_or(false);
+      v.snapshots = r.boolean(*t, "snapshots", p + "snapshots").value_or(true);
+      s.vehicles.push_back(std::move(v));
+    }
+  }
+  if (const toml::node* fnode = root.get("fixed")) {
+    const toml::array* arr = fnode->as_array();
+    if (!arr) r.problem(fnode, "fixed", "must be an array of tables [[fixed]]");
+    for (size_t i = 0; arr && i < arr->size(); ++i) {
+      const toml::table* t = (*arr)[i].as_table();
+      const std::string p = "fixed[" + std::to_string(i) + "].";
+      if (!t) continue;
+      const int tl = r.line(t);
+      r.unknown_keys(*t, p, {"id", "kind", "position_m", "heading_deg"});
+      FixedSpec f;
+      f.line = tl;
+      if (auto id = r.string(*t, "id", p + "id", true, tl)) {
+        check_id(r, t->get("id"), p + "id", *id);
+        unique(t->get("id"), p + "id", *id);
+        f.id = *id;
+      }
+      f.kind = r.string(*t, "kind", p + "kind", true, tl).value_or("");
+      if (auto pos = r.numbers(*t, "position_m", p + "position_m", 2, 2, true, tl)) f.pos = {(*pos)[0], (*pos)[1]};
+      f.heading_deg = r.number(*t, "heading_deg", p + "heading_deg", false, tl).value_or(0);
+      s.fixed.push_back(std::move(f));
+    }
+  }
+  if (const toml::node* fnode = root.get("fire")) {
+    const toml::array* arr = fnode->as_array();
+    if (!arr) r.problem(fnode, "fire", "must be an array of tables [[fire]]");
+    for (size_t i = 0; arr && i < arr->size(); ++i) {
+      const toml::table* t = (*arr)[i].as_table();
+      const std::string p = "fire[" + std::to_string(i) + "].";
+      if (!t) continue;
+      const int tl = r.line(t);
+      r.unknown_keys(*t, p, {"t_s", "shooter", "munition", "target_m", "target"});
+      FireSpec f;
+      f.line = tl;
+      f.t_s = r.number(*t, "t_s", p + "t_s", true, tl).value_or(0);
+      if (f.t_s < 0) r.problem(t->get("t_s"), p + "t_s", "must not be negative");
+      f.shooter = r.string(*t, "shooter", p + "shooter", true, tl).value_or("");
+      f.munition = r.string(*t, "munition", p + "munition", true, tl).value_or("");
+      f.target = r.string(*t, "target", p + "target", false, tl).value_or("");
+      if (auto tm = r.numbers(*t, "target_m", p + "target_m", 2, 2, false, tl)) f.target_m = Vec2((*tm)[0], (*tm)[1]);
+      if (f.target.empty() == !f.target_m.has_value()) r.problem(tl, p + "target", "give exactly one of target or target_m");
+      s.fires.push_back(std::move(f));
+    }
+  }
+  if (const toml::table* b = root["background"].as_table()) {
+    const int bl = r.line(b);
+    r.unknown_keys(*b, "background.", {"vehicles", "seed", "exclude_m"});
+    if (auto n = r.number(*b, "vehicles", "background.vehicles", true, bl)) {
+      if (*n < 0 || *n > 1e6 || *n != std::floor(*n)) r.problem(b->get("vehicles"), "background.vehicles", "must be an integer 0-1000000");
+      else s.background_vehicles = static_cast<int>(*n);
+    }
+    if (auto n = r.number(*b, "seed", "background.seed", false, bl)) s.background_seed = static_cast<uint64_t>(std::abs(*n));
+    if (auto e = r.numbers(*b, "exclude_m", "background.exclude_m", 4, 4, false, bl))
+      s.background_exclude = std::make_pair(Vec2((*e)[0], (*e)[1]), Vec2((*e)[2], (*e)[3]));
+  }
+  // Fire references resolve against scenario ids (vehicles); munition kinds are checked with the world.
+  for (size_t i = 0; i < s.fires.size(); ++i) {
+    const auto& f = s.fires[i];
+    const std::string p = "fire[" + std::to_string(i) + "].";
+    bool shooter = false;
+    for (const auto& v : s.vehicles) shooter = shooter || v.id == f.shooter;
+    if (!f.shooter.empty() && !shooter) r.problem(f.line, p + "shooter", "no vehicle with id '" + f.shooter + "'");
+    if (!f.target.empty() && !ids.count(f.target)) r.problem(f.line, p + "target", "no vehicle or fixed object with id '" + f.target + "'");
+  }
+  if (!problems.empty()) throw InputError(std::move(problems));
+  return s;
+}
+
+void load_objects_csv(const std::filesystem::path& file, const KindTable& kinds, const Terrain& terrain,
+                      double water_level_m, FixedObjects& out, std::vector<Problem>& problems) {
+  const std::string fname = file.string();
+  std::ifstream in(file);
+  if (!in) {
+    problems.push_back({fname, 0, "objects", "cannot open file"});
+    return;
+  }
+  std::unordered_set<std::string> ids;
+  ids.reserve(out.size() * 2 + 1024);
+  for (const auto& id : out.id) ids.insert(id);
+  std::string line;
+  int ln = 0;
+  std::vector<std::string> cols;
+  while (std::getline(in, line)) {
+    ++ln;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line[0] == '#') continue;
+    if (ln == 1 && line.rfind("id,", 0) == 0) continue;  // header
+    cols.clear();
+    std::stringstream ss(line);
+    for (std::string c; std::getline(ss, c, ',');) cols.push_back(c);
+    if (cols.size() < 4 || cols.size() > 5) {
+      problems.push_back({fname, ln, "line", "expected id,kind,x_m,y_m[,heading_deg] (got " + std::to_string(cols.size()) + " fields)"});
+      continue;
+    }
+    const std::string& id = cols[0];
+    if (id.empty() || id.size() > kMaxIdLength)
+      problems.push_back({fname, ln, "id", "'" + id + "' must be 1 to " + std::to_string(kMaxIdLength) + " characters"});
+    if (!ids.insert(id).second) problems.push_back({fname, ln, "id", "duplicate id '" + id + "'"});
+    const int k = kinds.find(cols[1]);
+    if (k < 0) problems.push_back({fname, ln, "kind", "unknown kind '" + cols[1] + "' (known: " + kinds.names() + ")"});
+    else if (kinds[k].mobile()) problems.push_back({fname, ln, "kind", "'" + cols[1] + "' is not a fixed kind"});
+    double v[3] = {0, 0, 0};
+    bool ok = true;
+    static const char* names[3] = {"x_m", "y_m", "heading_deg"};
+    for (size_t c = 2; c < cols.size(); ++c) {
+      char* end = nullptr;
+      v[c - 2] = std::strtod(cols[c].c_str(), &end);
+      if (end == cols[c].c_str() || *end != '\0' || !std::isfinite(v[c - 2])) {
+        problems.push_back({fname, ln, names[c - 2], "'" + cols[c] + "' is not a finite number"});
+        ok = false;
+      }
+    }
+    if (!ok || k < 0) continue;
+    if (!terrain.contains(v[0], v[1])) {
+      problems.push_back({fname, ln, "position", "(" + cols[2] + ", " + cols[3] + ") is off the map"});
+      continue;
+    }
+    if (terrain.height(v[0], v[1]) < water_level_m) {
+      problems.push_back({fname, ln, "position", "(" + cols[2] + ", " + cols[3] + ") is in water"});
+      continue;
+    }
+    out.add(id, k, Vec3(v[0], v[1], terrain.height(v[0], v[1])), static_cast<float>(v[2]),
+            static_cast<float>(kinds[k].radius_m));
+  }
+}
+
+World build_world(const Scenario& s) {
+  std::vector<Problem> problems;
+  World w;
+  const std::string sf = s.file.string();
+  w.terrain = Terrain::load(s.terrain, s.origin);
+  w.kinds = KindTable::load(s.kinds, w.models);
+  w.water_level_m = s.water_level_m;
+  if (!s.objects.empty()) load_objects_csv(s.objects, w.kinds, w.terrain, w.water_level_m, w.fixed, problems);
+  std::unordered_set<std::string> ids(w.fixed.id.begin(), w.fixed.id.end());
+  for (size_t i = 0; i < s.fixed.size(); ++i) {
+    const auto& f = s.fixed[i];
+    const std::string p = "fixed[" + std::to_string(i) + "].";
+    const int k = w.kinds.find(f.kind);
+    if (k < 0) problems.push_back({sf, f.line, p + "kind", "unknown kind '" + f.kind + "' (known: " + w.kinds.names() + ")"});
+    else if (w.kinds[k].mobile()) problems.push_back({sf, f.line, p + "kind", "'" + f.kind + "' is not a fixed kind"});
+    if (!w.terrain.contains(f.pos.x(), f.pos.y())) problems.push_back({sf, f.line, p + "position_m", "off the map"});
+    if (!ids.insert(f.id).second) problems.push_back({sf, f.line, p + "id", "duplicate id '" + f.id + "' (also in the objects file)"});
+    if (k >= 0 && !w.kinds[k].mobile() && w.terrain.contains(f.pos.x(), f.pos.y()))
+      w.fixed.add(f.id, k, Vec3(f.pos.x(), f.pos.y(), w.terrain.height(f.pos.x(), f.pos.y())),
+                  static_cast<float>(f.heading_deg), static_cast<float>(w.kinds[k].radius_m));
+  }
+  auto place = [&](const VehicleSpec& v, int k, const std::string& p, const std::string& file, int line) {
+    const Kind& kind = w.kinds[k];
+    const bool on_map = w.terrain.contains(v.pos.x(), v.pos.y());
+    if (!on_map) {
+      problems.push_back({file, line, p + "position_m", "(" + std::to_string(v.pos.x()) + ", " + std::to_string(v.pos.y()) +
+                                                           ") is off the map (0..." + std::to_string(w.terrain.width_m()) + ")"});
+      return;
+    }
+    const bool water = w.is_water(v.pos.x(), v.pos.y());
+    if (kind.mobility == Mobility::Ground && water) problems.push_back({file, line, p + "position_m", "a ground vehicle cannot start in water"});
+    if (kind.mobility == Mobility::Ship && !water) problems.push_back({file, line, p + "position_m", "a ship must start in water"});
+    if (kind.mobility == Mobility::Munition) problems.push_back({file, line, p + "kind", "a munition is fired, not placed"});
+    for (size_t q = 0; q < v.waypoints.size(); ++q)
+      if (!w.terrain.contains(v.waypoints[q].x(), v.waypoints[q].y()))
+        problems.push_back({file, line, p + "waypoints_m", "waypoint " + std::to_string(q + 1) + " is off the map"});
+    double z = w.terrain.height(v.pos.x(), v.pos.y());
+    if (kind.mobility == Mobility::Ship) z = w.water_level_m;
+    if (v.has_z) z = v.pos.z();
+    const int e = w.ents.add(v.id, k, Vec3(v.pos.x(), v.pos.y(), z), static_cast<float>(v.heading_deg),
+                             static_cast<float>(kind.radius_m));
+    const double limit = v.max_speed_kmh.value_or(kind.max_speed_kmh);
+    w.ents.max_mps[e] = static_cast<float>(kmh2mps(limit));
+    w.ents.cruise_mps[e] = static_cast<float>(kmh2mps(std::min(v.speed_kmh, limit)));
+    const Vec2 d = heading_to_dir(v.heading_deg);
+    w.ents.vel[e] = Vec3(d.x(), d.y(), 0) * w.ents.cruise_mps[e];
+    w.ents.autonomous[e] = v.autonomous;
+    w.ents.snapshots[e] = v.snapshots;
+    w.ents.rounds[e] = kind.rounds;
+    w.ents.fuel_l[e] = static_cast<float>(kind.fuel_l);
+    w.ents.node[e] = v.node;
+    w.ents.route[e] = v.waypoints;
+    w.ents.loop_route[e] = v.id.rfind("bg", 0) == 0 && !v.snapshots;
+  };
+  for (size_t i = 0; i < s.vehicles.size(); ++i) {
+    const auto& v = s.vehicles[i];
+    const std::string p = "vehicle[" + std::to_string(i) + "].";
+    const int k = w.kinds.find(v.kind);
+    if (k < 0) {
+      problems.push_back({sf, v.line, p + "kind", "unknown kind '" + v.kind + "' (known: " + w.kinds.names() + ")"});
+      continue;
+    }
+    if (!ids.insert(v.id).second) problems.push_back({sf, v.line, p + "id", "duplicate id '" + v.id + "' (also a fixed object)"});
+    place(v, k, p, sf, v.line);
+  }
+  for (size_t i = 0; i < s.fires.size(); ++i) {
+    const int k = w.kinds.find(s.fires[i].munition);
+    if (k < 0 || w.kinds[k].mobility != Mobility::Munition)
+      problems.push_back({sf, s.fires[i].line, "fire[" + std::to_string(i) + "].munition",
+                          "'" + s.fires[i].munition + "' is not a munition kind"});
+  }
+  if (!problems.empty()) throw InputError(std::move(problems));
+  // Background traffic: ground vehicles on land driving waypoints over the whole map (the
+  // thesis's load of 500 vehicles, p. 1), never in the excluded area, never snapshotted.
+  if (s.background_vehicles > 0) {
+    Rng rng(s.background_seed);
+    const char* bg_kinds[] = {"m1a1", "hmmwv", "bmp"};
+    auto free_spot = [&](Vec2& out) {
+      for (int tries = 0; tries < 1000; ++tries) {
+        Vec2 q(rng.uniform(200, w.terrain.width_m() - 200), rng.uniform(200, w.terrain.depth_m() - 200));
+        if (w.is_water(q.x(), q.y())) continue;
+        if (s.background_exclude) {
+          const auto& [lo, hi] = *s.background_exclude;
+          if (q.x() >= lo.x() - 500 && q.x() <= hi.x() + 500 && q.y() >= lo.y() - 500 && q.y() <= hi.y() + 500) continue;
+        }
+        out = q;
+        return true;
+      }
+      return false;
+    };
+    for (int n = 0; n < s.background_vehicles; ++n) {
+      const int k = w.kinds.find(bg_kinds[rng.below(3)]);
+      if (k < 0) throw InputError(s.kinds.string(), 0, "kinds", "background traffic needs kinds m1a1, hmmwv, bmp");
+      VehicleSpec v;
+      char id[16];
+      std::snprintf(id, sizeof id, "bg%05d", n);
+      v.id = id;
+      Vec2 q;
+      if (!free_spot(q)) break;
+      v.pos = Vec3(q.x(), q.y(), 0);
+      for (int k2 = 0; k2 < 4; ++k2) {
+        Vec2 wp;
+        if (free_spot(wp)) v.waypoints.push_back(q + (wp - q).normalized() * std::min((wp - q).norm(), 3000.0));
+      }
+      v.heading_deg = v.waypoints.empty() ? 0 : dir_to_heading(v.waypoints[0] - q);
+      v.speed_kmh = rng.uniform(15, 55);
+      v.snapshots = false;
+      place(v, k, "background.", sf, 0);
+    }
+  }
+  w.grid.build(w.fixed, w.terrain.width_m(), w.terrain.depth_m(), thesis::kGridsquareM, /*home_only=*/true);
+  return w;
+}
+
+}  // namespace npsnet::world

@@ -1,0 +1,70 @@
+// Scenario files (TOML, shared/ARCHITECTURE.md) and the world they build. Paths inside a file are
+// relative to that file's folder. load_scenario checks syntax and fields; build_world loads the
+// terrain, kinds, models and objects and checks what needs them (unknown kind, off the map, in
+// water). Both throw InputError with every problem as FILE:LINE: field: message.
+#pragma once
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "world/error.hpp"
+#include "world/world.hpp"
+
+namespace npsnet::world {
+
+inline constexpr size_t kMaxIdLength = 11;  // the DIS marking's 11 characters
+
+struct VehicleSpec {
+  std::string id, kind;
+  Vec3 pos{0, 0, 0};
+  bool has_z = false;
+  double heading_deg = 0, speed_kmh = 0;
+  std::optional<double> max_speed_kmh;
+  std::vector<Vec2> waypoints;
+  int node = 1;
+  bool autonomous = false, snapshots = true;
+  int line = 0;
+};
+
+struct FixedSpec {
+  std::string id, kind;
+  Vec2 pos{0, 0};
+  double heading_deg = 0;
+  int line = 0;
+};
+
+struct FireSpec {
+  double t_s = 0;
+  std::string shooter, munition, target;  // target: an id, or empty when target_m is given
+  std::optional<Vec2> target_m;
+  int line = 0;
+};
+
+struct Scenario {
+  std::filesystem::path file;
+  double duration_s = 60;
+  std::filesystem::path terrain, objects, kinds;
+  geo::Geodetic origin{35.98, -121.25, 0.0};
+  double water_level_m = -1e9;
+  std::string collision_method = "thesis";  // "thesis" (issue 3); later methods are added
+  std::vector<VehicleSpec> vehicles;
+  std::vector<FixedSpec> fixed;
+  std::vector<FireSpec> fires;
+  int background_vehicles = 0;
+  uint64_t background_seed = 1;
+  // A region kept free of background traffic (the Appendix A cases live there).
+  std::optional<std::pair<Vec2, Vec2>> background_exclude;
+};
+
+Scenario load_scenario(const std::filesystem::path& file);
+World build_world(const Scenario& s);
+
+// Reads a fixed-object CSV (id,kind,x_m,y_m,heading_deg) into `out`, checking each line.
+void load_objects_csv(const std::filesystem::path& file, const KindTable& kinds, const Terrain& terrain,
+                      double water_level_m, FixedObjects& out, std::vector<Problem>& problems);
+
+// The bundled kinds file (models/kinds.toml in the source tree).
+std::filesystem::path default_kinds_file();
+
+}  // namespace npsnet::world

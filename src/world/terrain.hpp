@@ -1,0 +1,57 @@
+// Terrain heightfield in the local frame (x east, y north, z up, metres; origin at the SW corner).
+// Loaded from any GDAL raster. A raster with a coordinate system is resampled into a transverse
+// Mercator frame centred on the terrain; one without (a bare .asc) is taken as local metres with
+// its lower-left corner at `origin`. Heights are bilinear between posts; outside the map the
+// nearest edge post is used. Craters lower the posts inside their radius (the only mutation).
+#pragma once
+#include <filesystem>
+#include <vector>
+
+#include "core/geodesy.hpp"
+#include "core/math.hpp"
+
+namespace npsnet::world {
+
+// Rectangle of posts [i0, i1] x [j0, j1] (inclusive; i = column/x, j = row/y) changed by an edit.
+struct PostRect {
+  int i0 = 0, j0 = 0, i1 = -1, j1 = -1;
+  bool empty() const { return i1 < i0 || j1 < j0; }
+};
+
+class Terrain {
+ public:
+  Terrain() = default;
+  // Posts in row-major order, row 0 = south edge; spacing in metres; SW corner geodetic.
+  Terrain(int cols, int rows, double spacing_m, std::vector<float> heights,
+          const geo::Geodetic& origin);
+  // Throws InputError (file:0: terrain: message) on a missing or unreadable raster.
+  // `origin` is used only when the raster has no coordinate system.
+  static Terrain load(const std::filesystem::path& file, const geo::Geodetic& origin);
+
+  double height(double x, double y) const;  // bilinear
+  Vec3 normal(double x, double y) const;     // unit, from the bilinear surface's gradient
+  bool contains(double x, double y) const {
+    return x >= 0 && y >= 0 && x <= width_m() && y <= depth_m();
+  }
+  // Lower the ground by a bowl of `radius_m` and `depth_m` at (cx, cy); returns the posts changed.
+  PostRect crater(double cx, double cy, double radius_m, double depth_m);
+
+  int cols() const { return cols_; }
+  int rows() const { return rows_; }
+  double spacing_m() const { return spacing_; }
+  double width_m() const { return (cols_ - 1) * spacing_; }
+  double depth_m() const { return (rows_ - 1) * spacing_; }
+  float post(int i, int j) const { return h_[static_cast<size_t>(j) * cols_ + i]; }
+  const std::vector<float>& posts() const { return h_; }
+  const geo::LocalFrame& frame() const { return frame_; }
+  const geo::Geodetic& origin() const { return origin_; }
+
+ private:
+  int cols_ = 0, rows_ = 0;
+  double spacing_ = 1;
+  std::vector<float> h_;
+  geo::Geodetic origin_;
+  geo::LocalFrame frame_;
+};
+
+}  // namespace npsnet::world

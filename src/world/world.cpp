@@ -1,0 +1,85 @@
+#include "world/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace npsnet::world {
+
+void FixedObjects::add(std::string id_, int kind_, const Vec3& p, float heading, float radius) {
+  id.push_back(std::move(id_));
+  kind.push_back(static_cast<int16_t>(kind_));
+  state.push_back(0);
+  pos.push_back(p);
+  heading_deg.push_back(heading);
+  radius_m.push_back(radius);
+}
+
+int Entities::add(std::string id_, int kind_, const Vec3& p, float heading, float radius) {
+  id.push_back(std::move(id_));
+  kind.push_back(static_cast<int16_t>(kind_));
+  state.push_back(0);
+  pos.push_back(p);
+  vel.push_back(Vec3::Zero());
+  heading_deg.push_back(heading);
+  pitch_deg.push_back(0);
+  roll_deg.push_back(0);
+  radius_m.push_back(radius);
+  cruise_mps.push_back(0);
+  max_mps.push_back(0);
+  active.push_back(1);
+  local.push_back(1);
+  snapshots.push_back(1);
+  autonomous.push_back(0);
+  target.push_back(-1);
+  aim.push_back(p);
+  owner.push_back(-1);
+  rounds.push_back(0);
+  fuel_l.push_back(0);
+  node.push_back(1);
+  route.emplace_back();
+  leg.push_back(0);
+  loop_route.push_back(0);
+  flee_until.push_back(-1);
+  calm_until.push_back(-1);
+  return static_cast<int>(id.size() - 1);
+}
+
+int GridIndex::cell_of(double x, double y) const {
+  const int i = std::clamp(static_cast<int>(std::floor(x / cell_)), 0, cols_ - 1);
+  const int j = std::clamp(static_cast<int>(std::floor(y / cell_)), 0, rows_ - 1);
+  return j * cols_ + i;
+}
+
+void GridIndex::build(const FixedObjects& objs, double width_m, double depth_m, double cell_m, bool home_only) {
+  cell_ = cell_m;
+  cols_ = std::max(1, static_cast<int>(std::ceil(width_m / cell_m)));
+  rows_ = std::max(1, static_cast<int>(std::ceil(depth_m / cell_m)));
+  const size_t ncell = static_cast<size_t>(cols_) * rows_;
+  // For each object, the range of cells its bounding circle overlaps (or its home cell).
+  auto range = [&](size_t k, int& i0, int& j0, int& i1, int& j1) {
+    const double r = home_only ? 0.0 : objs.radius_m[k];
+    const Vec3& p = objs.pos[k];
+    i0 = std::clamp(static_cast<int>(std::floor((p.x() - r) / cell_)), 0, cols_ - 1);
+    i1 = std::clamp(static_cast<int>(std::floor((p.x() + r) / cell_)), 0, cols_ - 1);
+    j0 = std::clamp(static_cast<int>(std::floor((p.y() - r) / cell_)), 0, rows_ - 1);
+    j1 = std::clamp(static_cast<int>(std::floor((p.y() + r) / cell_)), 0, rows_ - 1);
+  };
+  start_.assign(ncell + 1, 0);
+  for (size_t k = 0; k < objs.size(); ++k) {
+    int i0, j0, i1, j1;
+    range(k, i0, j0, i1, j1);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) ++start_[static_cast<size_t>(j) * cols_ + i + 1];
+  }
+  for (size_t c = 0; c < ncell; ++c) start_[c + 1] += start_[c];
+  items_.assign(start_[ncell], 0);
+  std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
+  for (size_t k = 0; k < objs.size(); ++k) {
+    int i0, j0, i1, j1;
+    range(k, i0, j0, i1, j1);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) items_[fill[static_cast<size_t>(j) * cols_ + i]++] = static_cast<uint32_t>(k);
+  }
+}
+
+}  // namespace npsnet::world

@@ -1,0 +1,98 @@
+// The world a node simulates: terrain, kinds and models, fixed objects with their 125 m
+// gridsquare index, and the moving entities (vehicles and munitions) as contiguous arrays.
+// Entities and fixed objects are referred to by index; nothing holds pointers across ticks.
+// The world is changed in one place, world::apply (apply.hpp), from collision outcomes.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/constants.hpp"
+#include "world/kinds.hpp"
+#include "world/terrain.hpp"
+
+namespace npsnet::world {
+
+// Fixed objects (trees, bushes, poles, buildings, towers, rocks ...), structure of arrays.
+struct FixedObjects {
+  std::vector<std::string> id;
+  std::vector<int16_t> kind;       // KindTable index
+  std::vector<uint8_t> state;      // index into Kind::states
+  std::vector<Vec3> pos;           // base centre on the ground (local frame, m)
+  std::vector<float> heading_deg;  // compass
+  std::vector<float> radius_m;     // bounding radius (from the kind)
+  size_t size() const { return id.size(); }
+  void add(std::string id_, int kind_, const Vec3& p, float heading, float radius);
+};
+
+// Gridsquare index of fixed objects (thesis p. 8-9: 125 m gridsquares, a list per gridsquare).
+// CSR layout: objects of cell c are items[start[c] .. start[c+1]). An object is listed in every
+// gridsquare its bounding sphere overlaps (this removes the thesis's Figure 9 border miss);
+// `home_only` lists it only in the gridsquare holding its centre (the thesis's behaviour).
+class GridIndex {
+ public:
+  void build(const FixedObjects& objs, double width_m, double depth_m, double cell_m,
+             bool home_only = false);
+  int cols() const { return cols_; }
+  int rows() const { return rows_; }
+  double cell_m() const { return cell_; }
+  int cell_of(double x, double y) const;  // clamped to the map
+  std::pair<const uint32_t*, const uint32_t*> objects_in(int cell) const {
+    return {items_.data() + start_[cell], items_.data() + start_[cell + 1]};
+  }
+  int count_in(int cell) const { return static_cast<int>(start_[cell + 1] - start_[cell]); }
+
+ private:
+  int cols_ = 0, rows_ = 0;
+  double cell_ = 125;
+  std::vector<uint32_t> start_, items_;
+};
+
+// Moving entities: vehicles and munitions, structure of arrays. Dead ones stay (wrecks are
+// still obstacles); munitions that detonated are marked inactive.
+struct Entities {
+  std::vector<std::string> id;
+  std::vector<int16_t> kind;
+  std::vector<uint8_t> state;        // index into Kind::states (0 intact ... last = wreck)
+  std::vector<Vec3> pos;             // centre of the ground contact (local frame, m)
+  std::vector<Vec3> vel;             // m/s
+  std::vector<float> heading_deg, pitch_deg, roll_deg;
+  std::vector<float> radius_m;
+  std::vector<float> cruise_mps;     // wanted speed
+  std::vector<float> max_mps;        // limit (Table 2 or scenario override)
+  std::vector<uint8_t> active;       // 0 = munition spent / entity removed
+  std::vector<uint8_t> local;        // 1 = driven by this node, 0 = remote (from the network)
+  std::vector<uint8_t> snapshots;    // collisions of this entity are snapshotted
+  std::vector<uint8_t> autonomous;
+  std::vector<int32_t> target;       // munitions: entity index or -1
+  std::vector<Vec3> aim;             // munitions: aim point; vehicles: current waypoint
+  std::vector<int32_t> owner;        // munitions: shooter index; -1 otherwise
+  std::vector<int32_t> rounds;
+  std::vector<float> fuel_l;
+  std::vector<int32_t> node;                 // the node that drives it (--node)
+  std::vector<std::vector<Vec2>> route;      // waypoints (set once at load; not touched per tick)
+  std::vector<int32_t> leg;                  // index of the waypoint being steered to
+  std::vector<uint8_t> loop_route;           // 1 = start over after the last waypoint
+  std::vector<float> flee_until;             // autonomous: fleeing until this time (s)
+  std::vector<float> calm_until;             // autonomous: no new reaction before this time (s)
+  size_t size() const { return id.size(); }
+  int add(std::string id_, int kind_, const Vec3& p, float heading, float radius);
+};
+
+struct World {
+  Terrain terrain;
+  ModelLibrary models;
+  KindTable kinds;
+  FixedObjects fixed;
+  GridIndex grid;
+  Entities ents;
+  double water_level_m = -1e9;  // ships sail where the terrain is below it
+  double t = 0;                 // scenario time, s
+  int64_t frame = 0;
+
+  bool is_water(double x, double y) const { return terrain.height(x, y) < water_level_m; }
+  const Kind& kind_of_entity(size_t i) const { return kinds[ents.kind[i]]; }
+  const Kind& kind_of_fixed(size_t i) const { return kinds[fixed.kind[i]]; }
+};
+
+}  // namespace npsnet::world

@@ -1,0 +1,59 @@
+// Test worlds: a flat (or sloped) terrain with the bundled kinds and models, and helpers to
+// place vehicles and fixed objects. Header-only, shared by the room tests.
+#pragma once
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "world/pose.hpp"
+#include "world/scenario.hpp"
+
+namespace npsnet::test {
+
+inline std::filesystem::path source(const std::string& rel) { return std::filesystem::path(NPSNET_SOURCE_DIR) / rel; }
+
+// A 2 km square at 10 m posts; height = base + slope_x * x.
+inline world::World flat_world(double base = 100.0, double slope_x = 0.0) {
+  world::World w;
+  const int n = 201;
+  std::vector<float> h(static_cast<size_t>(n) * n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) h[static_cast<size_t>(j) * n + i] = static_cast<float>(base + slope_x * i * 10.0);
+  w.terrain = world::Terrain(n, n, 10.0, std::move(h), {35.98, -121.25, 0});
+  w.kinds = world::KindTable::load(world::default_kinds_file(), w.models);
+  w.water_level_m = -1000;
+  return w;
+}
+
+inline int add_vehicle(world::World& w, const std::string& id, const std::string& kind, double x, double y,
+                       double heading, double speed_mps) {
+  const int k = w.kinds.find(kind);
+  const int e = w.ents.add(id, k, Vec3(x, y, w.terrain.height(x, y)), static_cast<float>(heading),
+                           static_cast<float>(w.kinds[k].radius_m));
+  const Vec2 d = heading_to_dir(heading);
+  w.ents.vel[e] = Vec3(d.x(), d.y(), 0) * speed_mps;
+  w.ents.cruise_mps[e] = static_cast<float>(speed_mps);
+  w.ents.max_mps[e] = static_cast<float>(std::max(speed_mps, kmh2mps(w.kinds[k].max_speed_kmh)));
+  w.ents.rounds[e] = w.kinds[k].rounds;
+  return e;
+}
+
+inline int add_fixed(world::World& w, const std::string& id, const std::string& kind, double x, double y) {
+  const int k = w.kinds.find(kind);
+  w.fixed.add(id, k, Vec3(x, y, w.terrain.height(x, y)), 0.0f, static_cast<float>(w.kinds[k].radius_m));
+  return static_cast<int>(w.fixed.size() - 1);
+}
+
+inline void index_fixed(world::World& w, bool home_only = true) {
+  w.grid.build(w.fixed, w.terrain.width_m(), w.terrain.depth_m(), thesis::kGridsquareM, home_only);
+}
+
+inline std::filesystem::path write_file(const std::string& name, const std::string& text) {
+  const auto dir = std::filesystem::temp_directory_path() / "npsnet-tests";
+  std::filesystem::create_directories(dir);
+  const auto p = dir / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+}  // namespace npsnet::test
