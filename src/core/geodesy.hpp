@@ -51,6 +51,10 @@ class LocalFrame {
   Vec3 to_ecef(const Vec3& local) const { return geodetic_to_ecef(to_geodetic(local)); }
   Vec3 from_ecef(const Vec3& ecef) const { return to_local(ecef_to_geodetic(ecef)); }
   // Local heading/pitch/roll (compass deg, deg, deg) <-> DIS Euler psi, theta, phi (rad).
+  // Heading is the local (grid) compass heading: 0 = +y, 90 = +x; pitch is nose up positive,
+  // roll right wing down positive. The DIS angles (IEEE 1278.1) orient the body frame (x forward,
+  // y right, z down) against ECEF: rotate psi about Z, then theta about the new Y, then phi about
+  // the new X. The TM grid convergence at local_pos is applied, so both directions round-trip.
   Vec3 to_dis_euler(const Vec3& local_pos, double heading_deg, double pitch_deg,
                     double roll_deg) const;
   Vec3 from_dis_euler(const Vec3& local_pos, const Vec3& psi_theta_phi) const;  // -> h, p, r deg
