@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <gdal.h>
+#include <cpl_error.h>
 #include <ogr_srs_api.h>
 
 #include <cmath>
@@ -355,5 +356,49 @@ TEST(Terrain, RejectsBadRasters) {
   write_geotiff(d / "nan_nd.tif", 2, 2, gt, 0, {1.0f, std::nanf(""), 3.0f, 4.0f}, &nan_nodata);
   const Terrain t = Terrain::load(d / "nan_nd.tif", {35, -120, 0});
   EXPECT_FLOAT_EQ(t.post(1, 1), (1.0f + 3.0f + 4.0f) / 3.0f);
+  fs::remove_all(d);
+}
+
+TEST(Terrain, LoadsDted) {
+  // A DTED level 0 cell (1 x 1 degree, 121 x 121 posts, 30 arc-seconds) made with GDAL's DTED
+  // driver, with a cone-shaped hill at a known place.
+  const fs::path d = temp_dir();
+  const fs::path p = d / "n35.dt0";
+  GDALAllRegister();
+  const int n = 121;
+  const double px = 1.0 / 120.0, lat_s = 35.0, lon_w = -122.0;
+  GDALDatasetH mem = GDALCreate(GDALGetDriverByName("MEM"), "", n, n, 1, GDT_Int16, nullptr);
+  ASSERT_NE(mem, nullptr);
+  double gt[6] = {lon_w - px / 2, px, 0, lat_s + 1 + px / 2, 0, -px};
+  GDALSetGeoTransform(mem, gt);
+  OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
+  OSRImportFromEPSG(srs, 4326);
+  GDALSetSpatialRef(mem, srs);
+  OSRDestroySpatialReference(srs);
+  const geo::Geodetic peak{35.6, -121.3, 0};
+  std::vector<int16_t> img(static_cast<size_t>(n) * n);
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) {
+      const geo::Geodetic g{lat_s + 1 - r * px, lon_w + c * px, 0};
+      img[static_cast<size_t>(r) * n + c] =
+          static_cast<int16_t>(200 + 800 * std::max(0.0, 1.0 - ground_distance(g, peak) / 20000.0));
+    }
+  ASSERT_EQ(GDALRasterIO(GDALGetRasterBand(mem, 1), GF_Write, 0, 0, n, n, img.data(), n, n,
+                         GDT_Int16, 0, 0),
+            CE_None);
+  GDALDatasetH dt = GDALCreateCopy(GDALGetDriverByName("DTED"), p.string().c_str(), mem, FALSE,
+                                   nullptr, nullptr, nullptr);
+  GDALClose(mem);
+  ASSERT_NE(dt, nullptr) << CPLGetLastErrorMsg();
+  GDALClose(dt);
+
+  const Terrain t = Terrain::load(p, {0, 0, 0});
+  EXPECT_GT(t.spacing_m(), 600.0);  // 30" is ~750 m east-west and ~925 m north-south here
+  EXPECT_LT(t.spacing_m(), 950.0);
+  EXPECT_NEAR(t.frame().projection().lat0(), 35.5, 1e-6);
+  EXPECT_NEAR(t.frame().projection().lon0(), -121.5, 1e-6);
+  const Vec3 want = t.frame().to_local(peak);
+  EXPECT_LT((highest_post(t) - want.head<2>()).norm(), t.spacing_m());
+  EXPECT_NEAR(t.height(want.x(), want.y()), 1000.0, 40.0);
   fs::remove_all(d);
 }
