@@ -127,10 +127,11 @@ void step_munition(world::World& w, int e, double dt, std::vector<GroundImpact>&
       ents.vel[e] = vel;
       return;
     }
-  } else {
-    vel.z() -= kGravity * dt;  // ballistic (semi-implicit Euler)
   }
-  const Vec3 end = start + vel * dt;
+  // Ballistic: exact for constant gravity at any dt (x += v dt - g dt^2 / 2, v -= g dt).
+  const bool ballistic = !(k.name == "missile" && ents.target[e] >= 0);
+  const Vec3 end = ballistic ? Vec3(start + vel * dt - Vec3(0, 0, 0.5 * kGravity * dt * dt)) : Vec3(start + vel * dt);
+  if (ballistic) vel.z() -= kGravity * dt;
   ents.vel[e] = vel;
   ents.heading_deg[e] = static_cast<float>(dir_to_heading(vel.head<2>()));
   ents.pitch_deg[e] = static_cast<float>(rad2deg(std::atan2(vel.z(), vel.head<2>().norm())));

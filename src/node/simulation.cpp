@@ -60,6 +60,13 @@ int Simulation::fire(int shooter, int munition_kind, const Vec3& point, int targ
 
 void Simulation::threatened(int shooter, const Vec3&, int victim) {
   const auto r = dynamics::react_to_fire(w_, victim, shooter);
+  if (r != dynamics::Reaction::None) {
+    auto ev = base("autonomous");
+    ev["id"] = w_.ents.id[victim];
+    ev["reaction"] = r == dynamics::Reaction::ReturnFire ? "return_fire" : "flee";
+    ev["shooter"] = shooter >= 0 ? w_.ents.id[shooter] : "";
+    log_.write(ev);
+  }
   if (r == dynamics::Reaction::ReturnFire) {
     const int he = w_.kinds.find("he_round");
     if (he >= 0) fire(victim, he, w_.ents.pos[shooter], shooter, w_.ents.id[shooter]);

@@ -17,13 +17,15 @@ inline Vec3 entity_centre(const World& w, size_t e) {
 inline double entity_radius(const World& w, size_t e) {
   return w.kinds[w.ents.kind[e]].radius_by_state[w.ents.state[e]];
 }
+// Fixed objects keep their intact sphere whatever their state (the thesis's one radius per
+// object, p. 9), so a vehicle driving on through a damaged tree stays in one contact episode.
 inline Vec3 fixed_centre(const World& w, size_t o) {
   const Kind& k = w.kinds[w.fixed.kind[o]];
-  const Vec3f& c = k.centre_by_state[w.fixed.state[o]];
+  const Vec3f& c = k.centre_by_state[0];
   return w.fixed.pos[o] + pose_rotation(w.fixed.heading_deg[o], 0, 0) * c.cast<double>();
 }
 inline double fixed_radius(const World& w, size_t o) {
-  return w.kinds[w.fixed.kind[o]].radius_by_state[w.fixed.state[o]];
+  return w.fixed.radius_m[o];
 }
 
 }  // namespace npsnet::world

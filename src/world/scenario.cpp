@@ -231,7 +231,8 @@ void load_objects_csv(const std::filesystem::path& file, const KindTable& kinds,
     const std::string& id = cols[0];
     if (id.empty() || id.size() > kMaxIdLength)
       problems.push_back({fname, ln, "id", "'" + id + "' must be 1 to " + std::to_string(kMaxIdLength) + " characters"});
-    if (!ids.insert(id).second) problems.push_back({fname, ln, "id", "duplicate id '" + id + "'"});
+    const bool dup = !ids.insert(id).second;
+    if (dup) problems.push_back({fname, ln, "id", "duplicate id '" + id + "'"});
     const int k = kinds.find(cols[1]);
     if (k < 0) problems.push_back({fname, ln, "kind", "unknown kind '" + cols[1] + "' (known: " + kinds.names() + ")"});
     else if (kinds[k].mobile()) problems.push_back({fname, ln, "kind", "'" + cols[1] + "' is not a fixed kind"});
@@ -246,7 +247,7 @@ void load_objects_csv(const std::filesystem::path& file, const KindTable& kinds,
         ok = false;
       }
     }
-    if (!ok || k < 0) continue;
+    if (!ok || k < 0 || dup) continue;
     if (!terrain.contains(v[0], v[1])) {
       problems.push_back({fname, ln, "position", "(" + cols[2] + ", " + cols[3] + ") is off the map"});
       continue;

@@ -1,0 +1,104 @@
+// Dynamics: speed limits, waypoints, terrain following, ballistic and guided munitions, dt range.
+#include <gtest/gtest.h>
+
+#include "dynamics/autonomous.hpp"
+#include "dynamics/dynamics.hpp"
+#include "support/fixture.hpp"
+
+using namespace npsnet;
+
+TEST(TerrainFollowing, PitchOnASlope) {
+  // Terrain rising 0.2 m per m eastward: a tank heading east pitches nose-up atan(0.2), no roll;
+  // heading north it rolls (right side, east, up: negative roll) and does not pitch.
+  auto w = test::flat_world(100.0, 0.2);
+  const int e = test::add_vehicle(w, "t", "m1a1", 1000, 1000, 90, 0);
+  dynamics::follow_terrain(w, e);
+  EXPECT_NEAR(w.ents.pitch_deg[e], rad2deg(std::atan(0.2)), 0.01);
+  EXPECT_NEAR(w.ents.roll_deg[e], 0.0, 0.01);
+  EXPECT_NEAR(w.ents.pos[e].z(), w.terrain.height(1000, 1000), 0.01);
+  w.ents.heading_deg[e] = 0;
+  dynamics::follow_terrain(w, e);
+  EXPECT_NEAR(w.ents.pitch_deg[e], 0.0, 0.01);
+  EXPECT_NEAR(w.ents.roll_deg[e], -rad2deg(std::atan(0.2)), 0.01);
+}
+
+TEST(TerrainFollowing, FeelsACrater) {
+  auto w = test::flat_world();
+  const int e = test::add_vehicle(w, "t", "m1a1", 1000, 1000, 90, 0);
+  w.terrain.crater(1000, 1000, 8, 2);
+  dynamics::follow_terrain(w, e);
+  EXPECT_LT(w.ents.pos[e].z(), 100.0 - 0.5);
+}
+
+TEST(Vehicles, SpeedNeverAboveTheLimit) {
+  auto w = test::flat_world();
+  const int e = test::add_vehicle(w, "t", "m1a1", 200, 1000, 90, 0);
+  w.ents.cruise_mps[e] = 100;  // asks for 360 km/h
+  w.ents.max_mps[e] = static_cast<float>(kmh2mps(thesis::kTable2GroundKmh));
+  std::vector<dynamics::GroundImpact> imp;
+  for (int i = 0; i < 10; ++i) dynamics::step(w, 0.1, imp);
+  EXPECT_NEAR(w.ents.pos[e].x() - 200, kmh2mps(thesis::kTable2GroundKmh) * 1.0, 1e-6);
+  EXPECT_LE(w.ents.vel[e].norm(), kmh2mps(thesis::kTable2GroundKmh) + 1e-9);
+}
+
+TEST(Vehicles, SteersToWaypointsForAnyDt) {
+  for (double dt : {0.01, 0.1, 0.5, 1.0}) {
+    auto w = test::flat_world();
+    const int e = test::add_vehicle(w, "t", "hmmwv", 500, 500, 90, 10);
+    w.ents.max_mps[e] = 20;
+    w.ents.route[e] = {Vec2(1500, 500), Vec2(1500, 1500)};
+    std::vector<dynamics::GroundImpact> imp;
+    const int n = static_cast<int>(std::round(300.0 / dt));
+    for (int i = 0; i < n; ++i) dynamics::step(w, dt, imp);
+    EXPECT_NEAR(w.ents.pos[e].x(), 1500, 20) << "dt " << dt;
+    EXPECT_GT(w.ents.pos[e].y(), 1400) << "dt " << dt;
+  }
+}
+
+TEST(Munitions, BallisticRoundMeetsTheTerrainAtTheTarget) {
+  auto w = test::flat_world();
+  const int s = test::add_vehicle(w, "s", "m1a1", 200, 1000, 90, 0);
+  const int he = w.kinds.find("he_round");
+  const Vec3 target(1700, 1000, w.terrain.height(1700, 1000));
+  const int m = dynamics::fire(w, s, he, target, -1);
+  ASSERT_GE(m, 0);
+  std::vector<dynamics::GroundImpact> imp;
+  for (int i = 0; i < 200 && imp.empty(); ++i) dynamics::step(w, 0.1, imp);
+  ASSERT_EQ(imp.size(), 1u);
+  EXPECT_LT((imp[0].point - target).head<2>().norm(), 3.0);  // within a post of the aim point
+  EXPECT_NEAR(imp[0].point.z(), w.terrain.height(imp[0].point.x(), imp[0].point.y()), 1e-3);
+  EXPECT_FALSE(w.ents.active[m]);
+  EXPECT_EQ(w.ents.rounds[s], w.kinds[w.ents.kind[s]].rounds - 1);
+}
+
+TEST(Munitions, MissileIsGuidedToAMovingTarget) {
+  auto w = test::flat_world();
+  const int h = test::add_vehicle(w, "h", "ah64", 200, 200, 90, 0);
+  w.ents.pos[h].z() += 300;
+  const int t = test::add_vehicle(w, "t", "m1a1", 1500, 1500, 0, 10);
+  const int m = dynamics::fire(w, h, w.kinds.find("missile"), w.ents.pos[t], t);
+  std::vector<dynamics::GroundImpact> imp;
+  double best = 1e9;
+  for (int i = 0; i < 100; ++i) {
+    dynamics::step(w, 0.1, imp);
+    best = std::min(best, (w.ents.pos[m] - world::entity_centre(w, t)).norm());
+  }
+  EXPECT_TRUE(imp.empty());
+  EXPECT_LT(best, world::entity_radius(w, t));
+}
+
+TEST(Autonomous, ReturnsFireOrFlees) {
+  auto w = test::flat_world();
+  const int shooter = test::add_vehicle(w, "s", "m1a1", 200, 200, 0, 0);
+  const int a = test::add_vehicle(w, "a", "bmp", 800, 200, 0, 0);
+  const int b = test::add_vehicle(w, "b", "hmmwv", 200, 800, 0, 0);  // no rounds
+  w.ents.autonomous[a] = w.ents.autonomous[b] = 1;
+  w.ents.max_mps[b] = 20;
+  EXPECT_EQ(dynamics::react_to_fire(w, a, shooter), dynamics::Reaction::ReturnFire);
+  EXPECT_EQ(dynamics::react_to_fire(w, b, shooter), dynamics::Reaction::Flee);
+  EXPECT_NEAR(w.ents.heading_deg[b], 0.0, 1e-3);  // directly away from the shooter (north)
+  EXPECT_EQ(dynamics::react_to_fire(w, shooter, a), dynamics::Reaction::None);  // not autonomous
+  std::vector<dynamics::GroundImpact> imp;
+  for (int i = 0; i < 10; ++i) dynamics::step(w, 0.1, imp);
+  EXPECT_GT(w.ents.pos[b].y(), 800 + 15);
+}
