@@ -128,16 +128,38 @@ void Simulation::log_changes() {
   }
 }
 
+namespace {
+template <class T>
+void append_vec(std::vector<T>& to, const std::vector<T>& from) {
+  to.insert(to.end(), from.begin(), from.end());
+}
+void append(world::Changes& to, const world::Changes& from) {
+  append_vec(to.entities, from.entities);
+  append_vec(to.fixed, from.fixed);
+  append_vec(to.craters, from.craters);
+  append_vec(to.collisions, from.collisions);
+  append_vec(to.detonations, from.detonations);
+}
+}  // namespace
+
+void Simulation::inject(const world::Changes& c) { append(injected_, c); }
+
 void Simulation::tick() {
   fired_.clear();
   changes_.clear();
   applied_.clear();
   contacts_.clear();
   impacts_.clear();
+  if (before_step) before_step(w_);
   scheduled_fires();
   dynamics::step(w_, dt_, impacts_);
   detector_.detect(w_, contacts_);
+  if (decides)
+    contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(), [&](const collision::Contact& c) { return !decides(c); }),
+                    contacts_.end());
   collision::respond(w_, contacts_, changes_);
+  append(changes_, injected_);
+  injected_.clear();
   for (const auto& im : impacts_) collision::detonate(w_, im.munition, im.point, -1, changes_);
   world::apply(w_, changes_, applied_);
   log_changes();

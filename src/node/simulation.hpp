@@ -30,6 +30,15 @@ class Simulation {
   double dt() const { return dt_; }
   const collision::DetectStats& stats() const { return detector_.stats(); }
   std::function<void(const TickReport&)> on_tick;  // renderer, snapshots, network
+  // Network hooks (the net<->world bridge):
+  //  before_step runs first in every tick (remote entity poses, received PDUs);
+  //  decides(contact) says whether this node decides a contact (the owner of the lower DIS
+  //  entity id does); contacts it does not decide are left to the other node;
+  //  inject(changes) queues changes decided elsewhere (Collision, Detonation PDUs, remote
+  //  fixed-object states), applied and logged in this tick's apply step.
+  std::function<void(world::World&)> before_step;
+  std::function<bool(const collision::Contact&)> decides;
+  void inject(const world::Changes& c);
 
   // Fires `munition_kind` from `shooter` at an entity or a point, logging the fire event.
   int fire(int shooter, int munition_kind, const Vec3& point, int target_entity, const std::string& target_name);
@@ -56,7 +65,7 @@ class Simulation {
   std::vector<collision::Contact> contacts_;
   std::vector<dynamics::GroundImpact> impacts_;
   std::vector<int> fired_;
-  world::Changes changes_;
+  world::Changes changes_, injected_;
   world::Applied applied_;
 };
 
