@@ -1,0 +1,530 @@
+#include "render/renderer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "core/constants.hpp"
+#include "render/effects.hpp"
+#include "render/gl_api.hpp"
+#include "render/gl_context.hpp"
+#include "render/model_meshes.hpp"
+#include "render/overlay.hpp"
+#include "render/shader.hpp"
+#include "render/terrain_mesh.hpp"
+#include "render/view.hpp"
+
+namespace npsnet::render {
+namespace {
+
+constexpr int kTerrainChunkCells = 32;     // posts per chunk side - 1
+constexpr int kBlockGridsquares = 4;       // fixed objects are culled in blocks of 4 x 4 gridsquares
+constexpr double kTerrainLodK = 24.0;      // a chunk uses step s beyond s * spacing * this (m)
+constexpr double kFullDetailRadii = 150.0; // full model within this many bounding radii (at 540 px)
+constexpr double kSimpleRadii = 800.0;     // simplified model within this many radii; none beyond
+constexpr double kEntityLodBoost = 3.0;    // vehicles keep detail farther than fixed objects
+constexpr float kSkyHorizon[3] = {0.74f, 0.80f, 0.86f};
+constexpr float kSkyZenith[3] = {0.33f, 0.53f, 0.82f};
+constexpr int kMinOverlayW = 64, kMinOverlayH = 48;
+
+void check_gl(const char* where) {
+  const GLenum e = gl::GetError();
+  if (e != GL_NO_ERROR) throw std::runtime_error(std::string("render: ") + gl::error_name(e) + " in " + where);
+}
+
+std::string fmt(const char* f, double a) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, a);
+  return b;
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  RenderOptions opt;
+  const world::World* world = nullptr;
+  std::unique_ptr<GlContext> ctx;
+  unsigned fbo = 0, color_rb = 0, depth_rb = 0, empty_vao = 0;
+  unsigned water_vao = 0, water_vbo = 0, particle_vao = 0, particle_vbo = 0;
+  size_t particle_cap = 0;
+  std::unique_ptr<Program> terrain_prog, object_prog, particle_prog, sky_prog;
+  std::unique_ptr<TerrainMesh> terrain;
+  std::unique_ptr<ModelMeshes> meshes;
+  std::unique_ptr<Overlay> overlay;
+  Effects effects;
+  FrameStats stats;
+  bool have_water = false;
+  float hmin = 0, hmax = 1;
+
+  // fixed-object blocks (CSR), bounds per block, radius per model
+  double block_m = 500;
+  int bcols = 0, brows = 0;
+  std::vector<uint32_t> block_start, block_items;
+  std::vector<Vec3> block_lo, block_hi;
+  std::vector<float> model_radius;  // farthest vertex from the model origin, m
+  std::vector<int> kind_max_lod_radius;
+
+  void build_blocks();
+  int model_for(int kind, int state) const;
+  void draw_scene(const SceneView& v, const ViewMath& vm);
+  void draw_overlay(const SceneView& v, const Camera& cam, const ViewMath& vm, const Hud& hud, bool map_inset);
+};
+
+int Renderer::Impl::model_for(int kind, int state) const {
+  if (kind < 0 || kind >= world->kinds.size()) return -1;
+  const auto& models = world->kinds[kind].models;
+  if (models.empty()) return -1;
+  return models[static_cast<size_t>(std::clamp(state, 0, static_cast<int>(models.size()) - 1))];
+}
+
+void Renderer::Impl::build_blocks() {
+  const auto& f = world->fixed;
+  const auto& t = world->terrain;
+  const double cell = world->grid.cols() > 0 ? world->grid.cell_m() : thesis::kGridsquareM;
+  block_m = cell * kBlockGridsquares;
+  bcols = std::max(1, static_cast<int>(std::ceil(t.width_m() / block_m)));
+  brows = std::max(1, static_cast<int>(std::ceil(t.depth_m() / block_m)));
+  const size_t nb = static_cast<size_t>(bcols) * static_cast<size_t>(brows);
+  const auto block_of = [&](const Vec3& p) {
+    const int a = std::clamp(static_cast<int>(std::floor(p.x() / block_m)), 0, bcols - 1);
+    const int b = std::clamp(static_cast<int>(std::floor(p.y() / block_m)), 0, brows - 1);
+    return static_cast<size_t>(b) * static_cast<size_t>(bcols) + static_cast<size_t>(a);
+  };
+  block_start.assign(nb + 1, 0);
+  for (size_t i = 0; i < f.size(); ++i) ++block_start[block_of(f.pos[i]) + 1];
+  for (size_t b = 0; b < nb; ++b) block_start[b + 1] += block_start[b];
+  block_items.assign(f.size(), 0);
+  std::vector<uint32_t> fill(block_start.begin(), block_start.end() - 1);
+  block_lo.assign(nb, Vec3(1e30, 1e30, 1e30));
+  block_hi.assign(nb, Vec3(-1e30, -1e30, -1e30));
+  for (size_t i = 0; i < f.size(); ++i) {
+    const size_t b = block_of(f.pos[i]);
+    block_items[fill[b]++] = static_cast<uint32_t>(i);
+    // the object's extent over all its states' models
+    double r = 0, zlo = 0, zhi = 0;
+    const int k = f.kind[i];
+    if (k >= 0 && k < world->kinds.size())
+      for (int m : world->kinds[k].models) {
+        r = std::max<double>(r, model_radius[static_cast<size_t>(m)]);
+        zlo = std::min<double>(zlo, world->models[m].bbox_min.z());
+        zhi = std::max<double>(zhi, world->models[m].bbox_max.z());
+      }
+    block_lo[b] = block_lo[b].cwiseMin(f.pos[i] - Vec3(r, r, -zlo));
+    block_hi[b] = block_hi[b].cwiseMax(f.pos[i] + Vec3(r, r, zhi));
+  }
+}
+
+Renderer::Renderer(const RenderOptions& opt, const world::World& world) : p_(std::make_unique<Impl>()) {
+  Impl& p = *p_;
+  p.opt = opt;
+  p.world = &world;
+  if (opt.width < 1 || opt.height < 1)
+    throw std::runtime_error("render: frame size " + std::to_string(opt.width) + "x" + std::to_string(opt.height) +
+                             " must be at least 1x1");
+  if (world.terrain.cols() < 2 || world.terrain.rows() < 2)
+    throw std::runtime_error("render: the world has no terrain (needs at least 2 x 2 posts)");
+  p.ctx = opt.window ? make_glfw_context(opt.width, opt.height, "NPSNET") : make_osmesa_context();
+  p.ctx->make_current();
+
+  GLint max_rb = 0, max_vp[2] = {0, 0};
+  gl::GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_rb);
+  gl::GetIntegerv(GL_MAX_VIEWPORT_DIMS, max_vp);
+  const int lim = std::min({max_rb, max_vp[0], max_vp[1]});
+  if (opt.width > lim || opt.height > lim)
+    throw std::runtime_error("render: frame size " + std::to_string(opt.width) + "x" + std::to_string(opt.height) +
+                             " exceeds this GL's limit of " + std::to_string(lim) + " px a side");
+  gl::GenFramebuffers(1, &p.fbo);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, p.fbo);
+  gl::GenRenderbuffers(1, &p.color_rb);
+  gl::BindRenderbuffer(GL_RENDERBUFFER, p.color_rb);
+  gl::RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, opt.width, opt.height);
+  gl::FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, p.color_rb);
+  gl::GenRenderbuffers(1, &p.depth_rb);
+  gl::BindRenderbuffer(GL_RENDERBUFFER, p.depth_rb);
+  gl::RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, opt.width, opt.height);
+  gl::FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, p.depth_rb);
+  if (gl::CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error("render: cannot make a " + std::to_string(opt.width) + "x" + std::to_string(opt.height) +
+                             " framebuffer");
+
+  const auto dir = opt.shader_dir.empty() ? std::filesystem::path("shaders") : opt.shader_dir;
+  p.terrain_prog = std::make_unique<Program>(dir, "terrain");
+  p.object_prog = std::make_unique<Program>(dir, "object");
+  p.particle_prog = std::make_unique<Program>(dir, "particle");
+  p.sky_prog = std::make_unique<Program>(dir, "sky");
+  p.overlay = std::make_unique<Overlay>(dir, world.terrain, world.water_level_m);
+
+  p.terrain = std::make_unique<TerrainMesh>(world.terrain, kTerrainChunkCells);
+  p.hmin = p.terrain->min_z();
+  p.hmax = p.terrain->max_z();
+  p.meshes = std::make_unique<ModelMeshes>(world.models);
+  p.model_radius.resize(static_cast<size_t>(world.models.size()));
+  for (int m = 0; m < world.models.size(); ++m) {
+    float r = 0;
+    for (const auto& v : world.models[m].vertices) r = std::max(r, v.norm());
+    p.model_radius[static_cast<size_t>(m)] = r;
+  }
+  p.build_blocks();
+
+  gl::GenVertexArrays(1, &p.empty_vao);
+  // water plane over the whole map
+  p.have_water = world.water_level_m > p.hmin;
+  {
+    const auto W = static_cast<float>(world.terrain.width_m()), D = static_cast<float>(world.terrain.depth_m());
+    const auto z = static_cast<float>(std::clamp(world.water_level_m, -1e6, 1e6));
+    const TerrainVertex q[4] = {{0, 0, z, 0, 0, 1, 0}, {W, 0, z, 0, 0, 1, 0}, {0, D, z, 0, 0, 1, 0}, {W, D, z, 0, 0, 1, 0}};
+    gl::GenVertexArrays(1, &p.water_vao);
+    gl::BindVertexArray(p.water_vao);
+    gl::GenBuffers(1, &p.water_vbo);
+    gl::BindBuffer(GL_ARRAY_BUFFER, p.water_vbo);
+    gl::BufferData(GL_ARRAY_BUFFER, sizeof q, q, GL_STATIC_DRAW);
+    const auto st = static_cast<GLsizei>(sizeof(TerrainVertex));
+    gl::EnableVertexAttribArray(0);
+    gl::VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, st, reinterpret_cast<void*>(0));
+    gl::EnableVertexAttribArray(1);
+    gl::VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, st, reinterpret_cast<void*>(3 * sizeof(float)));
+    gl::EnableVertexAttribArray(2);
+    gl::VertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, st, reinterpret_cast<void*>(6 * sizeof(float)));
+  }
+  gl::GenVertexArrays(1, &p.particle_vao);
+  gl::BindVertexArray(p.particle_vao);
+  gl::GenBuffers(1, &p.particle_vbo);
+  gl::BindBuffer(GL_ARRAY_BUFFER, p.particle_vbo);
+  for (int a = 0; a < 2; ++a) {
+    gl::EnableVertexAttribArray(static_cast<GLuint>(a));
+    gl::VertexAttribPointer(static_cast<GLuint>(a), 4, GL_FLOAT, GL_FALSE, sizeof(Particle),
+                            reinterpret_cast<void*>(static_cast<size_t>(a) * 4 * sizeof(float)));
+    gl::VertexAttribDivisor(static_cast<GLuint>(a), 1);
+  }
+  gl::BindVertexArray(0);
+  check_gl("Renderer setup");
+}
+
+Renderer::~Renderer() {
+  if (!p_ || !p_->ctx) return;
+  Impl& p = *p_;
+  p.ctx->make_current();
+  p.terrain.reset();
+  p.meshes.reset();
+  p.overlay.reset();
+  p.terrain_prog.reset();
+  p.object_prog.reset();
+  p.particle_prog.reset();
+  p.sky_prog.reset();
+  gl::DeleteBuffers(1, &p.water_vbo);
+  gl::DeleteBuffers(1, &p.particle_vbo);
+  gl::DeleteVertexArrays(1, &p.water_vao);
+  gl::DeleteVertexArrays(1, &p.particle_vao);
+  gl::DeleteVertexArrays(1, &p.empty_vao);
+  gl::DeleteRenderbuffers(1, &p.color_rb);
+  gl::DeleteRenderbuffers(1, &p.depth_rb);
+  gl::DeleteFramebuffers(1, &p.fbo);
+}
+
+void Renderer::terrain_changed(const world::PostRect& r) {
+  Impl& p = *p_;
+  if (r.empty()) return;
+  p.ctx->make_current();
+  p.terrain->rebuild(p.world->terrain, r);
+  p.hmin = std::min(p.hmin, p.terrain->min_z());
+  p.overlay->update_map(p.world->terrain, r);
+}
+
+void Renderer::add_explosion(const Vec3& at, double t, float scale) { p_->effects.add_explosion(at, t, scale); }
+void Renderer::add_fire(const Vec3& at, double t, double seconds) { p_->effects.add_fire(at, t, seconds); }
+
+void Renderer::Impl::draw_scene(const SceneView& v, const ViewMath& vm) {
+  const world::World& w = *world;
+  const float fog_density = opt.fog && opt.visibility_m > 0 ? static_cast<float>(1.0 / opt.visibility_m) : 0.0f;
+  // beyond this the haze leaves < 1 % of a colour: nothing there is drawn
+  const double max_dist = fog_density > 0 ? 2.15 * opt.visibility_m : static_cast<double>(kFarM);
+  const Vec3f sun = Vec3f(0.45f, -0.50f, 0.74f).normalized();
+  const Vec3f eyef = vm.eye.cast<float>();
+  const auto common = [&](const Program& pr) {
+    pr.use();
+    gl::UniformMatrix4fv(pr.loc("u_vp"), 1, GL_FALSE, vm.vp.data());
+    gl::Uniform3f(pr.loc("u_eye"), eyef.x(), eyef.y(), eyef.z());
+    gl::Uniform3f(pr.loc("u_sun"), sun.x(), sun.y(), sun.z());
+    gl::Uniform1f(pr.loc("u_fog_density"), fog_density);
+    gl::Uniform3f(pr.loc("u_fog_color"), kSkyHorizon[0], kSkyHorizon[1], kSkyHorizon[2]);
+  };
+
+  // sky
+  gl::Disable(GL_DEPTH_TEST);
+  gl::DepthMask(GL_FALSE);
+  sky_prog->use();
+  const Mat4f inv = vm.vp.inverse();
+  gl::UniformMatrix4fv(sky_prog->loc("u_inv_vp"), 1, GL_FALSE, inv.data());
+  gl::Uniform3f(sky_prog->loc("u_horizon"), kSkyHorizon[0], kSkyHorizon[1], kSkyHorizon[2]);
+  gl::Uniform3f(sky_prog->loc("u_zenith"), kSkyZenith[0], kSkyZenith[1], kSkyZenith[2]);
+  gl::BindVertexArray(empty_vao);
+  gl::DrawArrays(GL_TRIANGLES, 0, 3);
+  gl::Enable(GL_DEPTH_TEST);
+  gl::DepthFunc(GL_LEQUAL);
+  gl::DepthMask(GL_TRUE);
+  gl::Clear(GL_DEPTH_BUFFER_BIT);
+
+  // terrain
+  common(*terrain_prog);
+  gl::Uniform2f(terrain_prog->loc("u_hrange"), hmin, hmax);
+  gl::Uniform1f(terrain_prog->loc("u_water_level"), static_cast<float>(std::clamp(w.water_level_m, -1e6, 1e6)));
+  gl::Uniform1i(terrain_prog->loc("u_water"), 0);
+  gl::Disable(GL_CULL_FACE);  // skirts face both ways
+  TerrainDrawStats ts;
+  terrain->draw(vm, kTerrainLodK / std::max(0.1, opt.lod_scale), ts);
+  stats.terrain_chunks_drawn = ts.chunks_drawn;
+  stats.terrain_chunks_culled = ts.chunks_culled;
+  stats.terrain_triangles = ts.triangles;
+
+  // objects: fixed ones by block, then entities
+  meshes->clear();
+  const double px_scale = static_cast<double>(vm.height) / 540.0 * std::max(0.1, opt.lod_scale);
+  const double full_k = kFullDetailRadii * px_scale, simple_k = kSimpleRadii * px_scale;
+  const auto& fs = (v.fixed_state && v.fixed_state->size() == w.fixed.size()) ? *v.fixed_state : w.fixed.state;
+  const auto& f = w.fixed;
+  const double reach = std::min(max_dist, simple_k * 40.0);  // no fixed object is 40 m in radius
+  const int a0 = std::clamp(static_cast<int>(std::floor((vm.eye.x() - reach) / block_m)), 0, bcols - 1);
+  const int a1 = std::clamp(static_cast<int>(std::floor((vm.eye.x() + reach) / block_m)), 0, bcols - 1);
+  const int b0 = std::clamp(static_cast<int>(std::floor((vm.eye.y() - reach) / block_m)), 0, brows - 1);
+  const int b1 = std::clamp(static_cast<int>(std::floor((vm.eye.y() + reach) / block_m)), 0, brows - 1);
+  int bv = 0, bc = 0;
+  for (int b = b0; b <= b1; ++b)
+    for (int a = a0; a <= a1; ++a) {
+      const size_t blk = static_cast<size_t>(b) * static_cast<size_t>(bcols) + static_cast<size_t>(a);
+      if (block_start[blk] == block_start[blk + 1]) continue;
+      const Vec3 near = vm.eye.cwiseMax(block_lo[blk]).cwiseMin(block_hi[blk]);
+      if ((near - vm.eye).norm() > reach || !vm.box_visible(block_lo[blk], block_hi[blk])) {
+        ++bc;
+        continue;
+      }
+      ++bv;
+      for (uint32_t k = block_start[blk]; k < block_start[blk + 1]; ++k) {
+        const uint32_t i = block_items[k];
+        const int m = model_for(f.kind[i], fs[i]);
+        if (m < 0) continue;
+        const float r = model_radius[static_cast<size_t>(m)];
+        const double d = (f.pos[i] - vm.eye).norm();
+        if (d > simple_k * r || d > max_dist + r || !vm.sphere_visible(f.pos[i], r)) continue;
+        meshes->add(m, d > full_k * r,
+                    {static_cast<float>(f.pos[i].x()), static_cast<float>(f.pos[i].y()),
+                     static_cast<float>(f.pos[i].z()), static_cast<float>(deg2rad(f.heading_deg[i])), 0, 0, 1, 0});
+      }
+    }
+  stats.blocks_visible = bv;
+  stats.blocks_culled = bc;
+  const world::Entities& e = v.ents ? *v.ents : w.ents;
+  for (size_t i = 0; i < e.size(); ++i) {
+    if (i < e.active.size() && !e.active[i]) continue;
+    const int m = model_for(e.kind[i], e.state[i]);
+    if (m < 0 || !e.pos[i].allFinite()) continue;
+    const float r = model_radius[static_cast<size_t>(m)];
+    const double d = (e.pos[i] - vm.eye).norm();
+    if (d > simple_k * kEntityLodBoost * r || d > max_dist + r || !vm.sphere_visible(e.pos[i], r)) continue;
+    meshes->add(m, d > full_k * kEntityLodBoost * r,
+                {static_cast<float>(e.pos[i].x()), static_cast<float>(e.pos[i].y()), static_cast<float>(e.pos[i].z()),
+                 static_cast<float>(deg2rad(e.heading_deg[i])), static_cast<float>(deg2rad(e.pitch_deg[i])),
+                 static_cast<float>(deg2rad(e.roll_deg[i])), 1, 0});
+  }
+  common(*object_prog);
+  gl::Enable(GL_CULL_FACE);
+  gl::CullFace(GL_BACK);
+  gl::FrontFace(GL_CCW);
+  ObjectDrawStats os;
+  meshes->draw(os);
+  stats.objects_full = os.instances_full;
+  stats.objects_simple = os.instances_simple;
+  stats.object_triangles = os.triangles;
+  gl::Disable(GL_CULL_FACE);
+
+  // water
+  gl::Enable(GL_BLEND);
+  gl::BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  if (have_water) {
+    common(*terrain_prog);
+    gl::Uniform1i(terrain_prog->loc("u_water"), 1);
+    gl::BindVertexArray(water_vao);
+    gl::DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+  }
+
+  // particles: premultiplied alpha, no depth writes
+  const auto& parts = effects.particles(v.t);
+  stats.particles = static_cast<int>(parts.size());
+  if (!parts.empty()) {
+    gl::DepthMask(GL_FALSE);
+    gl::BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    common(*particle_prog);
+    gl::Uniform3f(particle_prog->loc("u_right"), vm.right.x(), vm.right.y(), vm.right.z());
+    gl::Uniform3f(particle_prog->loc("u_up"), vm.up.x(), vm.up.y(), vm.up.z());
+    gl::BindVertexArray(particle_vao);
+    gl::BindBuffer(GL_ARRAY_BUFFER, particle_vbo);
+    const size_t bytes = parts.size() * sizeof(Particle);
+    if (bytes > particle_cap) {
+      particle_cap = std::max(bytes, particle_cap * 2);
+      gl::BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(particle_cap), nullptr, GL_STREAM_DRAW);
+    }
+    gl::BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), parts.data());
+    gl::DrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(parts.size()));
+    gl::DepthMask(GL_TRUE);
+  }
+  gl::Disable(GL_BLEND);
+  gl::BindVertexArray(0);
+}
+
+void Renderer::Impl::draw_overlay(const SceneView& v, const Camera& cam, const ViewMath& vm, const Hud& hud,
+                                  bool map_inset) {
+  const world::World& w = *world;
+  const int W = opt.width, H = opt.height;
+  const float s = static_cast<float>(std::max(1, static_cast<int>(std::lround(H / 300.0))));  // font pixel size
+  overlay->begin(W, H);
+  const Rgba panel{0.0f, 0.0f, 0.0f, 0.55f}, white{1, 1, 1, 1}, amber{1.0f, 0.78f, 0.25f, 1};
+  const world::Entities& e = v.ents ? *v.ents : w.ents;
+  const bool driven_ok = v.driven >= 0 && static_cast<size_t>(v.driven) < e.size();
+  // scenario clock, top-left
+  const std::string clock = "T " + fmt("%.1f", v.t) + " S";
+  overlay->rect(4 * s, 4 * s, (static_cast<float>(clock.size()) * 6 + 4) * s, 11 * s, panel);
+  overlay->text(6 * s, 6 * s, s, clock, white);
+  if (hud.show) {
+    const std::string lines[4] = {
+        hud.label.empty() ? std::string("VEHICLE") : hud.label,
+        "SPD " + fmt("%6.1f", hud.speed_kmh) + " KM/H  HDG " + fmt("%05.1f", wrap360(hud.heading_deg)),
+        "PITCH " + fmt("%+5.1f", hud.pitch_deg) + "  ROLL " + fmt("%+5.1f", hud.roll_deg),
+        "ROUNDS " + std::to_string(hud.rounds) + "  FUEL " + fmt("%.0f", hud.fuel_l) + " L"};
+    size_t longest = 0;
+    for (const auto& l : lines) longest = std::max(longest, l.size());
+    const float ph = (4 * 10 + 4) * s, pw = (static_cast<float>(longest) * 6 + 6) * s;
+    const float x0 = 4 * s, y0 = static_cast<float>(H) - ph - 4 * s;
+    overlay->rect(x0, y0, pw, ph, panel);
+    for (int k = 0; k < 4; ++k) overlay->text(x0 + 3 * s, y0 + (3 + 10 * k) * s, s, lines[k], k == 0 ? amber : white);
+  }
+  if (map_inset) {
+    const float side = std::floor(std::min(W, H) * 0.32f);
+    const float mx = static_cast<float>(W) - side - 6 * s, my = 6 * s;
+    const double TW = w.terrain.width_m(), TD = w.terrain.depth_m();
+    const float aspect = static_cast<float>(TW / std::max(TD, 1.0));
+    const float mw = aspect >= 1 ? side : side * aspect, mh = aspect >= 1 ? side / aspect : side;
+    overlay->rect(mx - 2, my - 2, mw + 4, mh + 4, {0, 0, 0, 0.8f});
+    overlay->map(mx, my, mw, mh);
+    const auto to_map = [&](const Vec3& p, float& x, float& y) {
+      x = mx + static_cast<float>(std::clamp(p.x() / TW, 0.0, 1.0)) * mw;
+      y = my + static_cast<float>(1.0 - std::clamp(p.y() / TD, 0.0, 1.0)) * mh;
+    };
+    const float dot = std::max(2.0f, s * 1.5f);
+    for (size_t i = 0; i < e.size(); ++i) {
+      if (i < e.active.size() && !e.active[i]) continue;
+      if (static_cast<int>(i) == v.driven || !e.pos[i].allFinite()) continue;
+      float x, y;
+      to_map(e.pos[i], x, y);
+      const int k = e.kind[i];
+      Rgba c{0.2f, 0.55f, 1.0f, 1};  // local vehicles
+      if (k >= 0 && k < w.kinds.size()) {
+        const auto& kind = w.kinds[k];
+        if (kind.mobility == world::Mobility::Munition) c = {1.0f, 0.95f, 0.2f, 1};
+        else if (e.state[i] + 1u >= kind.states.size() && kind.states.size() > 1) c = {0.05f, 0.05f, 0.05f, 1};
+        else if (i < e.local.size() && !e.local[i]) c = {1.0f, 0.3f, 0.2f, 1};
+      }
+      overlay->rect(x - dot / 2, y - dot / 2, dot, dot, c);
+    }
+    // the driven vehicle's view triangle (the camera's horizontal field of view, out to the haze)
+    Vec3 apex = vm.eye;
+    double heading = dir_to_heading(Vec2(vm.forward.x(), vm.forward.y()));
+    if (driven_ok) {
+      apex = e.pos[static_cast<size_t>(v.driven)];
+      heading = e.heading_deg[static_cast<size_t>(v.driven)];
+    }
+    const double half = rad2deg(std::atan(vm.tan_half_fov_y * vm.aspect));
+    const double reach = opt.fog ? 2.0 * opt.visibility_m : 0.15 * std::max(TW, TD);
+    float ax, ay, lx, ly, rx, ry;
+    to_map(apex, ax, ay);
+    const Vec2 dl = heading_to_dir(heading - half), dr = heading_to_dir(heading + half);
+    to_map(apex + Vec3(dl.x(), dl.y(), 0) * reach, lx, ly);
+    to_map(apex + Vec3(dr.x(), dr.y(), 0) * reach, rx, ry);
+    overlay->triangle(ax, ay, lx, ly, rx, ry, {1.0f, 1.0f, 1.0f, 0.22f});
+    overlay->line(ax, ay, lx, ly, {1, 1, 1, 0.9f});
+    overlay->line(ax, ay, rx, ry, {1, 1, 1, 0.9f});
+    overlay->line(lx, ly, rx, ry, {1, 1, 1, 0.5f});
+    if (driven_ok) {
+      overlay->rect(ax - dot, ay - dot, 2 * dot, 2 * dot, {0, 0, 0, 1});
+      overlay->rect(ax - dot + 1, ay - dot + 1, 2 * dot - 2, 2 * dot - 2, white);
+    }
+    (void)cam;
+  }
+  overlay->end();
+}
+
+void Renderer::render(const SceneView& view, const Camera& cam, const Hud& hud, bool map_inset) {
+  Impl& p = *p_;
+  if (view.world && view.world != p.world)
+    throw std::runtime_error("render: SceneView.world is not the world this Renderer was built for");
+  p.ctx->make_current();
+  gl::BindFramebuffer(GL_FRAMEBUFFER, p.fbo);
+  gl::Viewport(0, 0, p.opt.width, p.opt.height);
+  p.stats = {};
+  const ViewMath vm = make_view(cam.eye, cam.target, cam.fov_y_deg, p.opt.width, p.opt.height);
+  gl::ClearColor(kSkyHorizon[0], kSkyHorizon[1], kSkyHorizon[2], 1);
+  gl::Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  if (cam.eye.allFinite() && cam.target.allFinite()) p.draw_scene(view, vm);
+  if ((map_inset || hud.show) && p.opt.width >= kMinOverlayW && p.opt.height >= kMinOverlayH)
+    p.draw_overlay(view, cam, vm, hud, map_inset);
+  gl::Finish();
+  check_gl("render");
+  p.ctx->present(p.fbo, p.opt.width, p.opt.height);
+}
+
+std::vector<uint8_t> Renderer::pixels() const {
+  const Impl& p = *p_;
+  p.ctx->make_current();
+  const auto w = static_cast<size_t>(p.opt.width), h = static_cast<size_t>(p.opt.height);
+  std::vector<uint8_t> raw(w * h * 4), out(w * h * 4);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, p.fbo);
+  gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl::ReadPixels(0, 0, p.opt.width, p.opt.height, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
+  for (size_t y = 0; y < h; ++y)
+    std::copy_n(&raw[(h - 1 - y) * w * 4], w * 4, &out[y * w * 4]);
+  return out;
+}
+
+int Renderer::width() const { return p_->opt.width; }
+int Renderer::height() const { return p_->opt.height; }
+const FrameStats& Renderer::stats() const { return p_->stats; }
+const std::string& Renderer::gl_description() const { return p_->ctx->description; }
+bool Renderer::window_should_close() const { return p_->ctx->should_close(); }
+const TerrainMesh& Renderer::terrain_mesh() const { return *p_->terrain; }
+
+Camera look_at_pair(const world::World& w, const Vec3& a, const Vec3& b) {
+  const Vec3 mid = 0.5 * (a + b);
+  Vec2 dir(b.x() - a.x(), b.y() - a.y());
+  const double sep = dir.norm();
+  dir = sep > 1e-6 ? Vec2(dir / sep) : Vec2(0, 1);
+  const Vec2 side(-dir.y(), dir.x());
+  const double dist = std::max(30.0, 1.3 * sep + 20.0);
+  Camera c;
+  c.fov_y_deg = 50;
+  c.target = mid + Vec3(0, 0, 1.5);
+  Vec3 eye = mid + Vec3(side.x(), side.y(), 0) * (0.9 * dist) - Vec3(dir.x(), dir.y(), 0) * (0.3 * dist);
+  eye.z() = std::max(mid.z(), w.terrain.height(eye.x(), eye.y())) + std::max(8.0, 0.35 * dist);
+  // raise the eye until the terrain no longer hides the target (bounded)
+  for (int tries = 0; tries < 20; ++tries) {
+    bool blocked = false;
+    for (int k = 1; k < 24 && !blocked; ++k) {
+      const Vec3 q = eye + (c.target - eye) * (k / 24.0);
+      blocked = w.terrain.height(q.x(), q.y()) > q.z() - 1.0;
+    }
+    if (!blocked) break;
+    eye.z() += 0.15 * dist;
+  }
+  c.eye = eye;
+  return c;
+}
+
+Camera vehicle_eye(const Vec3& pos, double heading_deg, double pitch_deg, double eye_height_m) {
+  const Vec2 d = heading_to_dir(heading_deg);
+  const double cp = std::cos(deg2rad(pitch_deg)), sp = std::sin(deg2rad(pitch_deg));
+  Camera c;
+  c.eye = pos + Vec3(0, 0, eye_height_m);
+  c.target = c.eye + Vec3(d.x() * cp, d.y() * cp, sp) * 100.0;
+  c.fov_y_deg = 50;
+  return c;
+}
+
+}  // namespace npsnet::render

@@ -1,0 +1,197 @@
+// render_views: renders views of a scenario's world into PNGs and measures frames/s.
+//   render_views [--scenario FILE] [--out DIR] [--size WxH] [--gallery] [--fps N] [--window]
+// --gallery: every model of the kinds file in every state, on flat ground (models/ check).
+// --fps N: N frames along a ground vehicle's path (the scenario's first vehicle, driving its
+//          heading at 40 km/h, eye 3 m up) with HUD and map; prints the median frames/s.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "render/renderer.hpp"
+#include "world/scenario.hpp"
+
+using namespace npsnet;
+
+namespace {
+
+world::World gallery_world(const std::filesystem::path& kinds_file) {
+  world::World w;
+  const int n = 161;
+  std::vector<float> h(static_cast<size_t>(n * n), 100.0f);
+  w.terrain = world::Terrain(n, n, 2.0, h, geo::Geodetic{35.98, -121.25, 0.0});
+  w.kinds = world::KindTable::load(kinds_file, w.models);
+  // one row per kind, one column per state; vehicles are entities
+  double y = 20;
+  for (int k = 0; k < w.kinds.size(); ++k) {
+    const auto& kind = w.kinds[k];
+    double x = 20;
+    const double step = std::max(12.0, kind.radius_m * 2.6);
+    for (size_t s = 0; s < kind.states.size(); ++s) {
+      const Vec3 p(x, y, 100.0);
+      if (kind.mobile()) {
+        const int e = w.ents.add(kind.name + "_" + std::to_string(s), k, p, 30.0f, static_cast<float>(kind.radius_m));
+        w.ents.state[static_cast<size_t>(e)] = static_cast<uint8_t>(s);
+        if (kind.mobility == world::Mobility::Air && s == 0) w.ents.pos[static_cast<size_t>(e)].z() += 6;
+      } else {
+        w.fixed.add(kind.name + "_" + std::to_string(s), k, p, 30.0f, static_cast<float>(kind.radius_m));
+        w.fixed.state.back() = static_cast<uint8_t>(s);
+      }
+      x += step;
+    }
+    y += std::max(12.0, kind.radius_m * 2.4);
+  }
+  return w;
+}
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::filesystem::path scenario = std::filesystem::path(NPSNET_SHADER_DIR).parent_path() / "scenarios/default.toml";
+  std::filesystem::path out = "render-out";
+  int W = 960, H = 540, fps_frames = 0;
+  bool gallery = false, window = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto next = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "render_views: %s needs a value\n", a.c_str());
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--scenario") scenario = next();
+    else if (a == "--out") out = next();
+    else if (a == "--size") {
+      const std::string v = next();
+      if (std::sscanf(v.c_str(), "%dx%d", &W, &H) != 2 || W < 1 || H < 1) {
+        std::fprintf(stderr, "render_views: --size %s: want WxH\n", v.c_str());
+        return 2;
+      }
+    } else if (a == "--gallery") gallery = true;
+    else if (a == "--window") window = true;
+    else if (a == "--fps") fps_frames = std::atoi(next().c_str());
+    else {
+      std::fprintf(stderr, "render_views: unknown argument %s\n", a.c_str());
+      return 2;
+    }
+  }
+  try {
+    render::RenderOptions opt;
+    opt.width = W;
+    opt.height = H;
+    opt.window = window;
+    opt.shader_dir = NPSNET_SHADER_DIR;
+    std::filesystem::create_directories(out);
+    if (gallery) {
+      const auto kinds = std::filesystem::path(NPSNET_SHADER_DIR).parent_path() / "models/kinds.toml";
+      world::World w = gallery_world(kinds);
+      opt.fog = false;
+      render::Renderer r(opt, w);
+      std::printf("%s\n", r.gl_description().c_str());
+      render::SceneView v{&w, nullptr, nullptr, 0.0, -1};
+      // one close-up per kind row, plus an overview
+      double y = 20;
+      for (int k = 0; k < w.kinds.size(); ++k) {
+        const auto& kind = w.kinds[k];
+        const double step = std::max(12.0, kind.radius_m * 2.6);
+        const double span = step * (kind.states.size() - 1);
+        const Vec3 a(20, y, 100 + kind.height_m * 0.4), b(20 + span, y, 100 + kind.height_m * 0.4);
+        render::Camera c;
+        const double dist = std::max(18.0, span * 0.75 + kind.radius_m * 3.2);
+        c.target = 0.5 * (a + b);
+        c.eye = c.target + Vec3(-0.35 * dist, -dist, 0.45 * dist);
+        r.render(v, c, {}, false);
+        const auto f = out / ("gallery-" + kind.name + ".png");
+        if (!r.write_png(f)) throw std::runtime_error("cannot write " + f.string());
+        std::printf("wrote %s (%zu states)\n", f.string().c_str(), kind.states.size());
+        y += std::max(12.0, kind.radius_m * 2.4);
+      }
+      return 0;
+    }
+    const world::Scenario sc = world::load_scenario(scenario);
+    world::World w = world::build_world(sc);
+    std::printf("world: terrain %dx%d posts at %.1f m, %zu fixed objects, %zu entities, %d models\n",
+                w.terrain.cols(), w.terrain.rows(), w.terrain.spacing_m(), w.fixed.size(), w.ents.size(),
+                w.models.size());
+    auto t0 = std::chrono::steady_clock::now();
+    render::Renderer r(opt, w);
+    std::printf("renderer ready in %.0f ms: %s\n", ms_since(t0), r.gl_description().c_str());
+    const int driven = w.ents.size() ? 0 : -1;
+    render::SceneView v{&w, nullptr, nullptr, 0.0, driven};
+    render::Hud hud;
+    if (driven >= 0) {
+      const auto& kind = w.kind_of_entity(0);
+      hud = {true, mps2kmh(w.ents.cruise_mps[0]), w.ents.heading_deg[0], w.ents.pitch_deg[0], w.ents.roll_deg[0],
+             w.ents.rounds[0], w.ents.fuel_l[0], w.ents.id[0] + " " + kind.name};
+    }
+    if (fps_frames > 0) {
+      if (driven < 0) throw std::runtime_error("--fps needs a vehicle in the scenario");
+      std::vector<double> ms;
+      const Vec2 d = heading_to_dir(w.ents.heading_deg[0]);
+      const Vec3 start = w.ents.pos[0];
+      for (int f = 0; f < fps_frames; ++f) {
+        const double t = f * 0.1;  // 10 Hz scenario time, 40 km/h
+        Vec3 p = start + Vec3(d.x(), d.y(), 0) * (kmh2mps(40.0) * t);
+        p.z() = w.terrain.height(p.x(), p.y());
+        const double yaw = w.ents.heading_deg[0] + 25.0 * std::sin(t * 0.5);  // look around while driving
+        v.t = t;
+        const render::Camera c = render::vehicle_eye(p, yaw, -2.0, 3.0);
+        t0 = std::chrono::steady_clock::now();
+        r.render(v, c, hud, true);
+        ms.push_back(ms_since(t0));
+      }
+      const auto st = r.stats();
+      std::sort(ms.begin(), ms.end());
+      const double med = ms[ms.size() / 2];
+      std::printf("fps %dx%d: %d frames, median %.2f ms = %.1f frames/s (min %.2f ms, max %.2f ms)\n", W, H,
+                  fps_frames, med, 1000.0 / med, ms.front(), ms.back());
+      std::printf("last frame: terrain chunks %d drawn %d culled, %lld triangles; blocks %d visible %d culled; "
+                  "objects %lld full %lld simple, %lld triangles\n",
+                  st.terrain_chunks_drawn, st.terrain_chunks_culled, static_cast<long long>(st.terrain_triangles),
+                  st.blocks_visible, st.blocks_culled, static_cast<long long>(st.objects_full),
+                  static_cast<long long>(st.objects_simple), static_cast<long long>(st.object_triangles));
+      r.write_png(out / "fps-last-frame.png");
+      return 0;
+    }
+    // 1. driver's eye
+    r.render(v, render::vehicle_eye(w.ents.pos[0], w.ents.heading_deg[0], -2.0, 3.0), hud, true);
+    r.write_png(out / "view-driver.png");
+    // 2. the first two vehicles, as an imminent snapshot would see them
+    if (w.ents.size() >= 2) {
+      r.render(v, render::look_at_pair(w, w.ents.pos[0], w.ents.pos[1]), hud, true);
+      r.write_png(out / "view-pair.png");
+    }
+    // 3. a crater + explosion + fire next to the first vehicle, 1.5 s after
+    const Vec3 at = w.ents.pos[0] + Vec3(25, 15, 0);
+    const world::PostRect pr = w.terrain.crater(at.x(), at.y(), 6.0, 2.0);
+    r.terrain_changed(pr);
+    r.add_explosion(Vec3(at.x(), at.y(), w.terrain.height(at.x(), at.y())), 0.0, 1.0f);
+    r.add_fire(w.ents.pos[0] + Vec3(-20, 30, 0), 0.0, 20.0);
+    for (double t : {0.1, 1.0, 4.0}) {
+      v.t = t;
+      render::Camera c = render::look_at_pair(w, w.ents.pos[0], at);
+      r.render(v, c, hud, true);
+      char name[64];
+      std::snprintf(name, sizeof name, "view-explosion-t%.1f.png", t);
+      r.write_png(out / name);
+    }
+    // 4. overview from high above the proving ground
+    render::Camera high;
+    high.eye = w.ents.pos[0] + Vec3(-3000, -4000, 2500);
+    high.target = w.ents.pos[0] + Vec3(2000, 2000, 0);
+    v.t = 0;
+    r.render(v, high, hud, true);
+    r.write_png(out / "view-overview.png");
+    std::printf("wrote views to %s\n", out.string().c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "render_views: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
