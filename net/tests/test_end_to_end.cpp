@@ -60,9 +60,11 @@ TEST(EndToEnd, DeadReckonedRemoteFollowsTheTruthWithinThresholds) {
       const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(1);
       std::size_t got = 0;
       while (got == 0 && std::chrono::steady_clock::now() < deadline) {
-        got = b.poll([&](const net::EntityStatePdu& p) {
-          joined += table.apply(p, t) == net::RemoteEntityTable::ApplyResult::Joined;
-        });
+        got = b.poll(net::Overloaded{
+            [&](const net::EntityStatePdu& p) {
+              joined += table.apply(p, t) == net::RemoteEntityTable::ApplyResult::Joined;
+            },
+            [&](const net::EntityStateUpdatePdu& p) { table.apply(p, t); }});
         if (got == 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
       }
       ASSERT_EQ(got, 1u) << "tick " << tick << ": " << b.counters().summary();

@@ -43,6 +43,15 @@ EntityId originating_entity(const DetonationPdu& p) noexcept;
 EntityId originating_entity(const CollisionPdu& p) noexcept;
 EntityId originating_entity(const EntityStateUpdatePdu& p) noexcept;
 
+// Builds one visitor from several lambdas: parse(d, c, net::Overloaded{[](const FirePdu&){...},
+// [](const EntityStatePdu&){...}}).
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
+
 class DatagramParser {
  public:
   explicit DatagramParser(ReceiveFilter filter = {}) : filter_(filter) {}
