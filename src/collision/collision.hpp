@@ -1,16 +1,36 @@
-// Collision detection and response, the thesis's method (Osborne 1991, ch. III.C-D):
+// Collision detection and response. Two methods, chosen per scenario (collision_method):
+//
+// "thesis" (Osborne 1991, ch. III.C-D), the reference:
 //  fixed objects: only below the threshold height, from the entity's gridsquare list, bounding
 //    spheres (p. 9-10);
 //  moving objects: L1 |dx| and |dy| both within 100 m (p. 11), L2 centre distance < sum of
 //    radii, L3 two rays + Haines' crossings test (p. 15-19, Figure 6): real when the other's
-//    polygon on the line of centres lies inside this object's sphere, else retried next tick;
-//  response as Figure 8 (p. 22) with the constants of core/constants.hpp.
-// detect() reports only the first tick of each contact episode; it reuses its buffers (no
-// allocation per tick once warm). Positions in the local frame, metres; speeds m/s.
+//    polygon on the line of centres lies inside this object's sphere, else retried next tick.
+//
+// "continuous" (issue 6, the node's default), which removes the thesis's chapter V limits:
+//  every body sweeps its sphere from (end centre - velocity * dt) to its end centre; the broad
+//    phase works on the swept boxes (fixed objects: a 125 m grid listing each object in every
+//    gridsquare its sphere overlaps, queried over every gridsquare the swept box overlaps;
+//    moving: a hashed grid sized to the swept boxes, rebuilt each tick into reused arrays);
+//  the narrow phase solves the swept-sphere time of impact analytically (sweep.hpp), then goes
+//    up the pair's shape tiers (sphere -> oriented box -> convex hull -> polygon mesh, shapes.hpp)
+//    only while the cheaper tier cannot decide;
+//  contacts are sorted by (time of impact, entity ids) and resolved together (respond()).
+//
+// Both: response as Figure 8 (p. 22) with the constants of core/constants.hpp; detect() reports
+// only the first tick of each contact episode and reuses its buffers (no allocation per tick
+// once warm). Positions in the local frame, metres; speeds m/s; times s unless a "fraction".
+// Non-finite positions or velocities are rejected with std::invalid_argument naming the entity.
 #pragma once
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
+#include "collision/broadphase.hpp"
+#include "collision/shapes.hpp"
+#include "collision/sweep.hpp"
+#include "core/constants.hpp"
 #include "world/changes.hpp"
 #include "world/world.hpp"
 
@@ -21,24 +41,75 @@ struct Contact {
   bool b_fixed = false;
   Vec3 point{0, 0, 0};    // contact point (local frame)
   Vec3 normal{0, 0, 1};   // unit, from a towards b
+  double toi = 1;         // time of impact, fraction of the tick in [0, 1] (thesis: always 1)
+  double dt_s = 0;        // the tick toi refers to (s); 0 = thesis (found at the end of the tick)
   const char* method = "";
 };
+// The key of a contact episode (moving pairs unordered; fixed contacts flagged).
+uint64_t contact_key(int a, int b, bool b_fixed);
+
+enum class Method : uint8_t { Thesis, Continuous };
+// Shape tiers, cheapest first. Auto: each pair goes up to the highest tier both kinds declare
+// (top_tier) and stops at the first tier that decides it. Capsule is accepted as a name for Box.
+enum class Tier : uint8_t { Auto, Sphere, Box, Hull, Mesh };
+Method parse_method(const std::string& s);  // "thesis" | "continuous"; throws std::invalid_argument
+Tier parse_tier(const std::string& s);      // "auto" | "sphere" | "capsule" | "box" | "hull" | "mesh"
+const char* method_name(Method m);
+const char* tier_name(Tier t);
+// The highest tier a kind declares: its `tiers` list in models/kinds.toml when it has one; else
+// fixed objects and munitions are spheres (the thesis's bounding spheres, p. 9 and p. 15) and
+// vehicles go up to their polygon mesh (the thesis's L3 polygons, p. 15).
+Tier top_tier(const world::Kind& k);
+
+struct Options {
+  Method method = Method::Continuous;
+  Tier tier = Tier::Auto;
+  double dt_s = thesis::kDefaultDtS;  // the tick the continuous sweep spans (s)
+};
+Options options_from(const std::string& method, const std::string& tier, double dt_s);
 
 struct DetectStats {
   int64_t fixed_tests = 0, l1_pairs = 0, l2_pairs = 0, l3_tests = 0, l3_rejects = 0, contacts = 0;
+  // continuous: pairs decided at each tier (index = Tier), swept-sphere hits
+  int64_t tier_decided[5] = {0, 0, 0, 0, 0};
+  int64_t sweep_pairs = 0, sweep_hits = 0;
 };
 
 class Detector {
  public:
-  // Finds the contacts that begin this tick (new episodes) and appends them to `out`.
+  Detector() : Detector(Options{Method::Thesis, Tier::Auto, thesis::kDefaultDtS}) {}  // the reference
+  explicit Detector(const Options& o) : opt_(o) {}
+  // Finds the contacts that begin this tick (new episodes) and appends them to `out`, sorted
+  // by (time of impact, entity ids) so that the result does not depend on entity order.
   void detect(const world::World& w, std::vector<Contact>& out);
   const DetectStats& stats() const { return stats_; }
+  const Options& options() const { return opt_; }
 
  private:
+  void detect_thesis(const world::World& w);
+  void detect_continuous(const world::World& w);
+  void prepare_shapes(const world::World& w);
+  // Narrow phase of one moving pair (entities a, b) beyond the sweep: true with a contact.
+  // Sweeps the posed shapes from the first touch of the bounding spheres ([t_in, t_out]) up to
+  // `tier`, cheapest first; true with the time, point and normal of the first contact.
+  bool narrow(const world::World& w, int a, int b, bool b_fixed, Tier tier, double t_in, double t_out, Contact& k);
+
+  Options opt_;
   std::vector<uint32_t> order_;         // active entities sorted by x (L1 sweep)
   std::vector<uint64_t> touching_, previous_;  // pair keys in contact this / last tick
   std::vector<Contact> candidates_;
   DetectStats stats_;
+  // continuous
+  std::vector<Vec3> c0_, c1_;           // sphere centres at the start and end of the tick
+  std::vector<float> r_sphere_, r_bound_;  // thesis sphere radius; bound of the model (true radius)
+  std::vector<Box> boxes_;              // swept boxes
+  std::vector<std::pair<uint32_t, uint32_t>> pairs_;
+  std::vector<uint32_t> found_;
+  MovingGrid moving_;
+  FixedGrid fixed_grid_;
+  size_t fixed_indexed_ = static_cast<size_t>(-1);
+  std::vector<Shape> shapes_;           // per model index
+  ShapeScratch scratch_;
 };
 
 // ---- geometry (thesis Figures 4-6) ------------------------------------------------------------
@@ -75,7 +146,11 @@ bool in_kill_band(double angle_deg);
 // scaled by the object's resistance: 0 none, 1 low, 2 med, 3 high.
 int fixed_damage_level(double momentum, double resistance);
 
-// Turns contacts into changes and collision records (one per contact), by Figure 8.
+// Turns contacts into changes and collision records (one per contact), by Figure 8. Contacts
+// are taken in (time of impact, ids) order; every bounce among them is solved together: a fixed
+// number of sequential impulse sweeps over all bouncing contacts, each impulse equal and
+// opposite (momentum conserved), then one velocity change per body. Continuous contacts
+// (dt_s > 0) move the bodies back to the time of impact and on with their new velocities.
 void respond(const world::World& w, const std::vector<Contact>& contacts, world::Changes& out);
 // A munition detonates at `point`: on an entity (`hit` >= 0) it kills it and leaves the ground
 // untouched (p. 15); on the ground it makes a crater; either way objects and vehicles within the

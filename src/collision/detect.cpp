@@ -1,5 +1,6 @@
-// Thesis detection (ch. III.C): fixed objects from the gridsquare list below the threshold
-// height, then moving objects through L1 (100 m window), L2 (spheres) and L3 (rays + Haines).
+// Method dispatch and the thesis detection (ch. III.C): fixed objects from the gridsquare list
+// below the threshold height, then moving objects through L1 (100 m window), L2 (spheres) and
+// L3 (rays + Haines). The continuous method is in continuous.cpp.
 #include <algorithm>
 #include <cmath>
 
@@ -22,10 +23,27 @@ bool is_munition(const world::World& w, int e) { return w.kinds[w.ents.kind[e]].
 }  // namespace
 
 void Detector::detect(const world::World& w, std::vector<Contact>& out) {
-  const auto& ents = w.ents;
-  const int n = static_cast<int>(ents.size());
   touching_.clear();
   candidates_.clear();
+  if (opt_.method == Method::Thesis) detect_thesis(w);
+  else detect_continuous(w);
+
+  // One event per contact episode: report only pairs not touching last tick.
+  std::sort(previous_.begin(), previous_.end());
+  for (const Contact& k : candidates_) {
+    const uint64_t key = pair_key(k.a, k.b, k.b_fixed);
+    if (std::binary_search(previous_.begin(), previous_.end(), key)) continue;
+    out.push_back(k);
+    ++stats_.contacts;
+  }
+  previous_.swap(touching_);
+}
+
+uint64_t contact_key(int a, int b, bool fixed) { return pair_key(a, b, fixed); }
+
+void Detector::detect_thesis(const world::World& w) {
+  const auto& ents = w.ents;
+  const int n = static_cast<int>(ents.size());
 
   // 1. Fixed objects (p. 9-10): only below the threshold height, from the gridsquare's list.
   for (int e = 0; e < n; ++e) {
@@ -103,15 +121,6 @@ void Detector::detect(const world::World& w, std::vector<Contact>& out) {
     }
   }
 
-  // 3. One event per contact episode: report only pairs not touching last tick.
-  std::sort(previous_.begin(), previous_.end());
-  for (const Contact& k : candidates_) {
-    const uint64_t key = pair_key(k.a, k.b, k.b_fixed);
-    if (std::binary_search(previous_.begin(), previous_.end(), key)) continue;
-    out.push_back(k);
-    ++stats_.contacts;
-  }
-  previous_.swap(touching_);
 }
 
 }  // namespace npsnet::collision

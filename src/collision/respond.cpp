@@ -32,6 +32,11 @@ namespace {
 
 int last_state(const world::Kind& k) { return static_cast<int>(k.states.size()) - 1; }
 
+// A continuous contact moves a body back to the time of impact, then on with velocity `to`.
+Vec3 rewind(const Contact& c, const Vec3& from, const Vec3& to) {
+  return c.dt_s > 0 ? Vec3((to - from) * c.dt_s * (1 - c.toi)) : Vec3::Zero();
+}
+
 // Munition contact: "the only response is an explosion" (p. 21).
 void munition_contact(const world::World& w, const Contact& c, int mun, int other, world::Changes& out) {
   world::CollisionRecord rec;
@@ -76,19 +81,24 @@ void vehicle_vs_fixed(const world::World& w, const Contact& c, world::Changes& o
     ch.to_state = last_state(kv);
     ch.set_vel = true;
     ch.cruise_mps = 0;
+    ch.shift = rewind(c, ents.vel[c.a], Vec3::Zero());
     rec.result_a = Result::Kill;
   } else if (large && to < last) {
     ch.set_vel = true;
     ch.cruise_mps = 0;
     if (level >= 2) ch.to_state = std::min(last_state(kv), ents.state[c.a] + 1);
-    // back off so the spheres no longer touch
-    const double gap = world::entity_radius(w, c.a) + world::fixed_radius(w, c.b) -
-                       (world::fixed_centre(w, c.b) - world::entity_centre(w, c.a)).norm();
-    ch.shift = -Vec3(c.normal.x(), c.normal.y(), 0).normalized() * (std::max(0.0, gap) + 0.05);
+    // back off so the spheres no longer touch (continuous: from where they first touched)
+    const double gap = c.dt_s > 0 ? 0.0
+                                  : world::entity_radius(w, c.a) + world::fixed_radius(w, c.b) -
+                                        (world::fixed_centre(w, c.b) - world::entity_centre(w, c.a)).norm();
+    Vec3 nh(c.normal.x(), c.normal.y(), 0);
+    nh = nh.norm() > 1e-9 ? Vec3(nh.normalized()) : Vec3::UnitX();
+    ch.shift = rewind(c, ents.vel[c.a], Vec3::Zero()) - nh * (std::max(0.0, gap) + 0.05);
     rec.result_a = Result::Stop;
   } else if (to > cur) {
     ch.set_vel = true;
     ch.vel = ents.vel[c.a] * thesis::kFixedHitSpeedKept;
+    ch.shift = rewind(c, ents.vel[c.a], ch.vel);
     ch.cruise_mps = static_cast<float>(ents.cruise_mps[c.a] * thesis::kFixedHitSpeedKept);
     rec.result_a = Result::Slowed;
   }
@@ -96,70 +106,134 @@ void vehicle_vs_fixed(const world::World& w, const Contact& c, world::Changes& o
   out.collisions.push_back(rec);
 }
 
-void vehicle_vs_vehicle(const world::World& w, const Contact& c, world::Changes& out) {
+// Sequential impulse sweeps over all bouncing contacts of the tick, in contact order.
+constexpr int kImpulseSweeps = 8;
+
+// The contact normal the bounce works along: horizontal unless an aircraft takes part.
+Vec3 bounce_normal(const world::World& w, const Contact& c) {
+  const bool air = w.kinds[w.ents.kind[c.a]].mobility == Mobility::Air || w.kinds[w.ents.kind[c.b]].mobility == Mobility::Air;
+  Vec3 n(c.normal.x(), c.normal.y(), air ? c.normal.z() : 0);
+  return n.norm() > 1e-9 ? Vec3(n.normalized()) : Vec3::UnitX();
+}
+
+// Figure 8 for two vehicles in an angle band (stop or kill); false when outside every band
+// (a bounce, solved with the others in solve_bounces).
+bool vehicle_vs_vehicle_band(const world::World& w, const Contact& c, world::Changes& out, world::CollisionRecord& rec) {
   const auto& ents = w.ents;
   const int a = c.a, b = c.b;
   const world::Kind& ka = w.kinds[ents.kind[a]];
   const world::Kind& kb = w.kinds[ents.kind[b]];
-  world::CollisionRecord rec;
   rec.a = a, rec.b = b, rec.point = c.point, rec.method = c.method;
   const Vec3 rel = ents.vel[a] - ents.vel[b];
-  const double closing = std::max(0.0, rel.dot(c.normal));
-  rec.closing_speed_mps = closing;
+  rec.closing_speed_mps = std::max(0.0, rel.dot(c.normal));
   rec.angle_deg = impact_angle_deg(ents.heading_deg[a], ents.heading_deg[b]);
+  if (!in_kill_band(rec.angle_deg)) {
+    rec.result_a = rec.result_b = Result::Bounce;
+    return false;
+  }
   world::EntityChange ca, cb;
   ca.entity = a, cb.entity = b;
   ca.set_vel = cb.set_vel = true;
-  if (in_kill_band(rec.angle_deg)) {
-    ca.cruise_mps = cb.cruise_mps = 0;  // vel zero
-    if (closing > thesis::kKillClosingSpeedMps) {
-      ca.to_state = last_state(ka), cb.to_state = last_state(kb);
-      rec.result_a = rec.result_b = Result::Kill;
-    } else {
-      rec.result_a = rec.result_b = Result::Stop;
-    }
+  ca.cruise_mps = cb.cruise_mps = 0;  // vel zero
+  ca.shift = rewind(c, ents.vel[a], Vec3::Zero());
+  cb.shift = rewind(c, ents.vel[b], Vec3::Zero());
+  if (rec.closing_speed_mps > thesis::kKillClosingSpeedMps) {
+    ca.to_state = last_state(ka), cb.to_state = last_state(kb);
+    rec.result_a = rec.result_b = Result::Kill;
   } else {
-    // Figure 7: bounce off each other, diminish the speed of both. An impulse along the contact
-    // normal with restitution e conserves momentum and loses energy; the bodies are separated
-    // (in inverse proportion to mass) so they do not touch again next tick.
-    const double ma = ka.mass_kg, mb = kb.mass_kg;
-    const double vn = rel.dot(c.normal);
-    const double e = thesis::kBounceRestitution;
-    const double j = vn > 0 ? (1 + e) * vn / (1 / ma + 1 / mb) : 0.0;
-    Vec3 va = ents.vel[a] - (j / ma) * c.normal;
-    Vec3 vb = ents.vel[b] + (j / mb) * c.normal;
-    // Ground vehicles stay on the ground: keep the horizontal part.
-    if (ka.mobility == Mobility::Ground) va.z() = 0;
-    if (kb.mobility == Mobility::Ground) vb.z() = 0;
-    ca.vel = va, cb.vel = vb;
-    ca.cruise_mps = static_cast<float>(va.norm());
-    cb.cruise_mps = static_cast<float>(vb.norm());
-    const double overlap = world::entity_radius(w, a) + world::entity_radius(w, b) -
-                           (world::entity_centre(w, b) - world::entity_centre(w, a)).norm();
-    const double push = std::max(0.0, overlap) + 0.05;
-    Vec3 nh(c.normal.x(), c.normal.y(), ka.mobility == Mobility::Air || kb.mobility == Mobility::Air ? c.normal.z() : 0);
-    nh = nh.norm() > 1e-9 ? Vec3(nh.normalized()) : Vec3::UnitX();
-    ca.shift = -nh * push * (mb / (ma + mb));
-    cb.shift = nh * push * (ma / (ma + mb));
-    rec.result_a = rec.result_b = Result::Bounce;
+    rec.result_a = rec.result_b = Result::Stop;
   }
-  if (!ents.local[a]) ca.set_vel = false;  // remote entities are moved by their owner
-  if (!ents.local[b]) cb.set_vel = false;
+  if (!ents.local[a]) ca.set_vel = false, ca.shift = Vec3::Zero();  // remote entities are moved by their owner
+  if (!ents.local[b]) cb.set_vel = false, cb.shift = Vec3::Zero();
   out.entities.push_back(ca);
   out.entities.push_back(cb);
-  out.collisions.push_back(rec);
+  return true;
+}
+
+// Figure 7: "bounce off each other, diminish the speed of both", for every bouncing contact of
+// the tick together. Impulses along the contact normals with restitution e, each equal and
+// opposite (momentum conserved), swept kImpulseSweeps times over the contacts in their sorted
+// order (deterministic, independent of where the entities are stored). Then one change per body:
+// the final velocity, and the move back to the time of impact and on (continuous), or the
+// separation push in inverse proportion to mass (thesis).
+void solve_bounces(const world::World& w, const std::vector<const Contact*>& bounces, world::Changes& out) {
+  if (bounces.empty()) return;
+  const auto& ents = w.ents;
+  std::vector<int> body;
+  for (const Contact* c : bounces) body.push_back(c->a), body.push_back(c->b);
+  std::sort(body.begin(), body.end());
+  body.erase(std::unique(body.begin(), body.end()), body.end());
+  auto slot = [&](int e) { return static_cast<size_t>(std::lower_bound(body.begin(), body.end(), e) - body.begin()); };
+  std::vector<Vec3> v(body.size()), shift(body.size(), Vec3::Zero());
+  std::vector<double> first_toi(body.size(), 2.0), dt(body.size(), 0.0);
+  for (size_t i = 0; i < body.size(); ++i) v[i] = ents.vel[body[i]];
+  const double e = thesis::kBounceRestitution;
+  for (int sweep = 0; sweep < kImpulseSweeps; ++sweep) {
+    for (const Contact* c : bounces) {
+      const size_t ia = slot(c->a), ib = slot(c->b);
+      const double ma = w.kinds[ents.kind[c->a]].mass_kg, mb = w.kinds[ents.kind[c->b]].mass_kg;
+      const Vec3 n = bounce_normal(w, *c);
+      const double vn = (v[ia] - v[ib]).dot(n);
+      if (vn <= 0) continue;  // separating already
+      const double j = (1 + e) * vn / (1 / ma + 1 / mb);
+      v[ia] -= (j / ma) * n;
+      v[ib] += (j / mb) * n;
+    }
+  }
+  for (const Contact* c : bounces) {
+    for (int side = 0; side < 2; ++side) {
+      const size_t i = slot(side ? c->b : c->a);
+      if (c->toi < first_toi[i]) first_toi[i] = c->toi, dt[i] = c->dt_s;
+    }
+    if (c->dt_s > 0) continue;
+    // Thesis contacts (found at the end of the tick): push the pair apart.
+    const double ma = w.kinds[ents.kind[c->a]].mass_kg, mb = w.kinds[ents.kind[c->b]].mass_kg;
+    const double overlap = world::entity_radius(w, c->a) + world::entity_radius(w, c->b) -
+                           (world::entity_centre(w, c->b) - world::entity_centre(w, c->a)).norm();
+    const double push = std::max(0.0, overlap) + 0.05;
+    const Vec3 nh = bounce_normal(w, *c);
+    shift[slot(c->a)] -= nh * push * (mb / (ma + mb));
+    shift[slot(c->b)] += nh * push * (ma / (ma + mb));
+  }
+  for (size_t i = 0; i < body.size(); ++i) {
+    const int ent = body[i];
+    world::EntityChange ch;
+    ch.entity = ent;
+    Vec3 vi = v[i];
+    // Ground vehicles stay on the ground: keep the horizontal part.
+    if (w.kinds[ents.kind[ent]].mobility != Mobility::Air) vi.z() = 0;
+    ch.set_vel = ents.local[ent] != 0;  // remote entities are moved by their owner
+    ch.vel = vi;
+    ch.cruise_mps = static_cast<float>(vi.norm());
+    if (dt[i] > 0) shift[i] += (vi - ents.vel[ent]) * dt[i] * (1 - first_toi[i]);
+    ch.shift = ents.local[ent] ? shift[i] : Vec3::Zero();
+    out.entities.push_back(ch);
+  }
 }
 
 }  // namespace
 
 void respond(const world::World& w, const std::vector<Contact>& contacts, world::Changes& out) {
+  // Bounces first (solved together), so that a stop or kill of the same body this tick wins.
+  std::vector<const Contact*> bounces;
+  for (const Contact& c : contacts) {
+    const bool mun_a = w.kinds[w.ents.kind[c.a]].mobility == Mobility::Munition;
+    const bool mun_b = !c.b_fixed && w.kinds[w.ents.kind[c.b]].mobility == Mobility::Munition;
+    if (mun_a || mun_b || c.b_fixed) continue;
+    if (!in_kill_band(impact_angle_deg(w.ents.heading_deg[c.a], w.ents.heading_deg[c.b]))) bounces.push_back(&c);
+  }
+  solve_bounces(w, bounces, out);
   for (const Contact& c : contacts) {
     const bool mun_a = w.kinds[w.ents.kind[c.a]].mobility == Mobility::Munition;
     const bool mun_b = !c.b_fixed && w.kinds[w.ents.kind[c.b]].mobility == Mobility::Munition;
     if (mun_a) munition_contact(w, c, c.a, c.b, out);
     else if (mun_b) munition_contact(w, c, c.b, c.a, out);
     else if (c.b_fixed) vehicle_vs_fixed(w, c, out);
-    else vehicle_vs_vehicle(w, c, out);
+    else {
+      world::CollisionRecord rec;
+      vehicle_vs_vehicle_band(w, c, out, rec);  // band: changes; bounce: already solved
+      out.collisions.push_back(rec);
+    }
   }
 }
 

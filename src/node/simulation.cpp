@@ -17,6 +17,7 @@ double round3(double v) { return std::round(v * 1000.0) / 1000.0; }
 
 Simulation::Simulation(world::World w, const world::Scenario& s, EventLog& log, double dt)
     : w_(std::move(w)), log_(log), dt_(dt) {
+  detector_ = collision::Detector(collision::options_from(s.collision_method, s.collision_tier, dt));
   for (const auto& f : s.fires) {
     Scheduled sc{f.t_s, find_entity(f.shooter), w_.kinds.find(f.munition), -1, -1, Vec3::Zero(), f.target};
     if (f.target_m) {

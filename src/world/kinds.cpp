@@ -1,5 +1,7 @@
 #include "world/kinds.hpp"
 
+#include <algorithm>
+
 #include "core/constants.hpp"
 #include "world/toml_util.hpp"
 
@@ -51,7 +53,8 @@ KindTable KindTable::load(const std::filesystem::path& file, ModelLibrary& model
     const int tl = r.line(t);
     const std::string p = name + ".";
     r.unknown_keys(*t, p, {"mobility", "mass_kg", "radius_m", "states", "models", "explosive", "max_speed_kmh",
-                           "dis_type", "blast_radius_m", "crater_radius_m", "crater_depth_m", "rounds", "fuel_l", "resistance"});
+                           "dis_type", "blast_radius_m", "crater_radius_m", "crater_depth_m", "rounds", "fuel_l", "resistance",
+                           "tiers"});
     Kind k;
     k.name = name;
     if (auto m = r.string(*t, "mobility", p + "mobility", true, tl)) {
@@ -111,6 +114,17 @@ KindTable KindTable::load(const std::filesystem::path& file, ModelLibrary& model
     k.fuel_l = r.number(*t, "fuel_l", p + "fuel_l", false, tl).value_or(0);
     k.resistance = r.number(*t, "resistance", p + "resistance", false, tl).value_or(1.0);
     if (k.resistance <= 0) r.problem(t->get("resistance"), p + "resistance", "must be positive");
+    if (auto tiers = r.strings(*t, "tiers", p + "tiers", false, tl)) {
+      // Collision shape tiers (issue 6; collision/collision.hpp): the highest one listed.
+      static const char* const tier_names[] = {"sphere", "box", "hull", "mesh"};
+      for (const auto& tn : *tiers) {
+        int v = tn == "capsule" ? 2 : 0;
+        for (int i = 0; i < 4; ++i)
+          if (tn == tier_names[i]) v = i + 1;
+        if (v == 0) r.problem(t->get("tiers"), p + "tiers", "must list sphere, capsule, box, hull or mesh (got '" + tn + "')");
+        k.top_tier = static_cast<uint8_t>(std::max<int>(k.top_tier, v));
+      }
+    }
     if (k.mobility == Mobility::Munition && k.max_speed_kmh <= 0)
       r.problem(tl, p + "max_speed_kmh", "a munition needs its speed");
     out.kinds_.push_back(std::move(k));

@@ -37,14 +37,22 @@ Scenario load_scenario(const std::filesystem::path& file) {
   Scenario s;
   s.file = file;
   const auto dir = file.parent_path();
-  r.unknown_keys(root, "", {"duration_s", "world", "vehicle", "fixed", "fire", "background", "collision_method"});
+  r.unknown_keys(root, "", {"duration_s", "world", "vehicle", "fixed", "fire", "background", "collision_method",
+                          "collision_tier"});
   if (auto v = r.number(root, "duration_s", "duration_s", false, 0)) {
     if (*v <= 0) r.problem(root.get("duration_s"), "duration_s", "must be positive");
     s.duration_s = *v;
   }
   if (auto m = r.string(root, "collision_method", "collision_method", false, 0)) {
-    if (*m != "thesis") r.problem(root.get("collision_method"), "collision_method", "must be \"thesis\" (got '" + *m + "')");
+    if (*m != "thesis" && *m != "continuous")
+      r.problem(root.get("collision_method"), "collision_method", "must be \"continuous\" or \"thesis\" (got '" + *m + "')");
     s.collision_method = *m;
+  }
+  if (auto m = r.string(root, "collision_tier", "collision_tier", false, 0)) {
+    if (*m != "auto" && *m != "sphere" && *m != "capsule" && *m != "box" && *m != "hull" && *m != "mesh")
+      r.problem(root.get("collision_tier"), "collision_tier",
+                "must be one of auto, sphere, capsule, box, hull, mesh (got '" + *m + "')");
+    s.collision_tier = *m;
   }
   const toml::table* w = root["world"].as_table();
   if (!w) {

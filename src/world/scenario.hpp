@@ -47,7 +47,11 @@ struct Scenario {
   std::filesystem::path terrain, objects, kinds;
   geo::Geodetic origin{35.98, -121.25, 0.0};
   double water_level_m = -1e9;
-  std::string collision_method = "thesis";  // "thesis" (issue 3); later methods are added
+  // "continuous" (swept spheres, border objects, N-body, shape tiers: issue 6) or "thesis" (the
+  // 1991 method, issue 3); collision_tier forces one shape tier for every pair ("auto": each
+  // pair takes the cheapest tier that decides it). collision/collision.hpp parses both.
+  std::string collision_method = "continuous";
+  std::string collision_tier = "auto";
   std::vector<VehicleSpec> vehicles;
   std::vector<FixedSpec> fixed;
   std::vector<FireSpec> fires;

@@ -52,7 +52,7 @@ TEST(AppendixA, BroadsideKillsBoth) {
   ASSERT_TRUE(c);
   EXPECT_EQ(outcome_of(*c, "tank1"), "kill");
   EXPECT_EQ(outcome_of(*c, "apc1"), "kill");
-  EXPECT_EQ((*c)["method"], "L3-haines");
+  EXPECT_EQ((*c)["method"], "continuous-mesh");  // the default method (issue 6)
 }
 
 TEST(AppendixA, ShallowAngleBounces) {

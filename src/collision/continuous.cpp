@@ -1,0 +1,253 @@
+// The continuous method (collision.hpp): swept spheres in the broad phase, analytic time of
+// impact, shape tiers up to what the pair needs, border objects from every gridsquare.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <tuple>
+
+#include "collision/collision.hpp"
+#include "world/pose.hpp"
+
+namespace npsnet::collision {
+namespace {
+
+bool finite3(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+
+bool is_munition(const world::World& w, int e) { return w.kinds[w.ents.kind[e]].mobility == world::Mobility::Munition; }
+
+const char* method_of(Tier t, bool fixed) {
+  switch (t) {
+    case Tier::Box: return fixed ? "continuous-box-fixed" : "continuous-box";
+    case Tier::Hull: return fixed ? "continuous-hull-fixed" : "continuous-hull";
+    case Tier::Mesh: return fixed ? "continuous-mesh-fixed" : "continuous-mesh";
+    default: return fixed ? "continuous-sphere-fixed" : "continuous-sphere";
+  }
+}
+
+// Relative motion per sample of the shape sweep: a quarter of the thinner body's smallest half
+// extent, so no body passes a face between two samples; at most kMaxSamples samples a pair.
+constexpr double kSampleFraction = 0.25;
+constexpr int kMaxSamples = 256;
+constexpr int kBisections = 16;
+
+}  // namespace
+
+void Detector::prepare_shapes(const world::World& w) {
+  if (static_cast<int>(shapes_.size()) == w.models.size()) return;
+  shapes_.clear();
+  for (int i = 0; i < w.models.size(); ++i) shapes_.push_back(make_shape(w.models[i]));
+}
+
+bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier tier, double t_in, double t_out,
+                      Contact& k) {
+  const auto& ents = w.ents;
+  const double dt = opt_.dt_s;
+  const Shape& sa = shapes_[w.kinds[ents.kind[a]].models[ents.state[a]]];
+  const Mat3 ra = world::pose_rotation(ents.heading_deg[a], ents.pitch_deg[a], ents.roll_deg[a]);
+  const Vec3 va = ents.vel[a] * dt;  // displacement over the tick
+  const Vec3 pa_end = ents.pos[a];
+  const Shape* sbp;
+  Mat3 rb;
+  Vec3 vb = Vec3::Zero(), pb_end;
+  if (b_fixed) {
+    sbp = &shapes_[w.kinds[w.fixed.kind[b]].models[w.fixed.state[b]]];
+    rb = world::pose_rotation(w.fixed.heading_deg[b], 0, 0);
+    pb_end = w.fixed.pos[b];
+  } else {
+    sbp = &shapes_[w.kinds[ents.kind[b]].models[ents.state[b]]];
+    rb = world::pose_rotation(ents.heading_deg[b], ents.pitch_deg[b], ents.roll_deg[b]);
+    vb = ents.vel[b] * dt;
+    pb_end = ents.pos[b];
+  }
+  const Shape& sb = *sbp;
+  auto poses = [&](double t, Pose& pa, Pose& pb) {
+    pa.rot = ra, pa.pos = pa_end - va * (1 - t);
+    pb.rot = rb, pb.pos = pb_end - vb * (1 - t);
+  };
+  // The cheapest tier that decides: a box apart decides "no"; the pair's tier decides "yes".
+  auto touching = [&](double t) {
+    Pose pa, pb;
+    poses(t, pa, pb);
+    if (!box_overlap(sa, pa, sb, pb)) {
+      ++stats_.tier_decided[static_cast<int>(Tier::Box)];
+      return false;
+    }
+    if (tier == Tier::Box) return ++stats_.tier_decided[static_cast<int>(Tier::Box)], true;
+    const bool hull = hull_overlap(sa, pa, sb, pb);
+    if (!hull || tier == Tier::Hull) return ++stats_.tier_decided[static_cast<int>(Tier::Hull)], hull;
+    ++stats_.tier_decided[static_cast<int>(Tier::Mesh)];
+    return mesh_overlap(sa, pa, sb, pb, scratch_);
+  };
+  const double rel = (va - vb).norm();
+  const double step = kSampleFraction * std::max(1e-3, std::min(sa.min_half, sb.min_half));
+  int n = rel > 0 ? static_cast<int>(std::ceil(rel * (t_out - t_in) / step)) : 0;
+  n = std::clamp(n, 0, kMaxSamples);
+  double lo = t_in, hi = -1;
+  if (touching(t_in)) {
+    hi = t_in;
+  } else {
+    for (int s = 1; s <= n; ++s) {
+      const double t = t_in + (t_out - t_in) * s / n;
+      if (touching(t)) {
+        hi = t;
+        break;
+      }
+      lo = t;
+    }
+    if (hi < 0) return false;
+    for (int i = 0; i < kBisections; ++i) {
+      const double m = 0.5 * (lo + hi);
+      (touching(m) ? hi : lo) = m;
+    }
+  }
+  Pose pa, pb;
+  poses(hi, pa, pb);
+  const Vec3 ca = pa.rot * sa.sphere_centre + pa.pos, cb = pb.rot * sb.sphere_centre + pb.pos;
+  const Vec3 d = cb - ca;
+  k.normal = d.norm() > 1e-9 ? Vec3(d.normalized()) : (rel > 0 ? Vec3((vb - va).normalized()) : Vec3::UnitX());
+  Vec3 p;
+  if (mesh_overlap(sa, pa, sb, pb, scratch_, &p)) {
+    k.point = p;  // on the meeting triangles' intersection
+  } else {
+    // Box or hull contact without the surfaces meeting: the ray from each centre to the other
+    // (thesis L3's first ray, Haines on the polygon), midway between the two surface points.
+    const RayHit hb = ray_model(w.models[w.kinds[b_fixed ? w.fixed.kind[b] : ents.kind[b]]
+                                             .models[b_fixed ? w.fixed.state[b] : ents.state[b]]],
+                                pb.rot.transpose() * (ca - pb.pos), pb.rot.transpose() * k.normal, 0, d.norm());
+    const RayHit ha = ray_model(w.models[w.kinds[ents.kind[a]].models[ents.state[a]]],
+                                pa.rot.transpose() * (cb - pa.pos), -(pa.rot.transpose() * k.normal), 0, d.norm());
+    const Vec3 qa = ha.hit ? Vec3(pa.rot * ha.point + pa.pos) : ca;
+    const Vec3 qb = hb.hit ? Vec3(pb.rot * hb.point + pb.pos) : cb;
+    k.point = 0.5 * (qa + qb);
+  }
+  k.toi = hi;
+  k.method = method_of(tier, b_fixed);
+  return true;
+}
+
+void Detector::detect_continuous(const world::World& w) {
+  prepare_shapes(w);
+  const auto& ents = w.ents;
+  const int n = static_cast<int>(ents.size());
+  const double dt = opt_.dt_s;
+  // Active entities, their sweeps and swept boxes. Reject non-finite input before any use.
+  order_.clear();
+  for (int e = 0; e < n; ++e) {
+    if (!ents.active[e]) continue;
+    if (!finite3(ents.pos[e]) || !finite3(ents.vel[e]) || !std::isfinite(ents.heading_deg[e]) ||
+        !std::isfinite(ents.pitch_deg[e]) || !std::isfinite(ents.roll_deg[e]))
+      throw std::invalid_argument("collision: entity '" + ents.id[e] +
+                                  "': position, velocity or orientation is not finite (NaN or infinite)");
+    order_.push_back(static_cast<uint32_t>(e));
+  }
+  const size_t m = order_.size();
+  c0_.resize(m), c1_.resize(m), r_sphere_.resize(m), r_bound_.resize(m), boxes_.resize(m);
+  for (size_t i = 0; i < m; ++i) {
+    const int e = static_cast<int>(order_[i]);
+    c1_[i] = world::entity_centre(w, e);
+    c0_[i] = c1_[i] - ents.vel[e] * dt;
+    if (!finite3(c0_[i]))
+      throw std::invalid_argument("collision: entity '" + ents.id[e] + "': velocity * dt overflows");
+    r_sphere_[i] = static_cast<float>(world::entity_radius(w, e));
+    const Tier top = opt_.tier != Tier::Auto ? opt_.tier : top_tier(w.kinds[ents.kind[e]]);
+    const Shape& s = shapes_[w.kinds[ents.kind[e]].models[ents.state[e]]];
+    r_bound_[i] = top == Tier::Sphere ? r_sphere_[i] : std::max(r_sphere_[i], static_cast<float>(s.bound_radius * 1.0001 + 1e-3));
+    boxes_[i] = swept_box(c0_[i], c1_[i], r_bound_[i]);
+  }
+
+  // Fixed objects: a grid listing each in every gridsquare its sphere (or its model's bound,
+  // when a tier above the sphere may be asked) overlaps; built once per set of objects.
+  if (fixed_indexed_ != w.fixed.size()) {
+    std::vector<Vec3> centres(w.fixed.size());
+    std::vector<float> radii(w.fixed.size());
+    for (size_t o = 0; o < w.fixed.size(); ++o) {
+      centres[o] = world::fixed_centre(w, o);
+      const world::Kind& k = w.kinds[w.fixed.kind[o]];
+      const Tier top = opt_.tier != Tier::Auto ? opt_.tier : top_tier(k);
+      radii[o] = static_cast<float>(world::fixed_radius(w, o));
+      if (top != Tier::Sphere) {
+        prepare_shapes(w);
+        for (int mi : k.models) radii[o] = std::max(radii[o], static_cast<float>(shapes_[mi].bound_radius * 1.0001 + 1e-3));
+      }
+    }
+    fixed_grid_.build(centres, radii, w.terrain.width_m(), w.terrain.depth_m(), thesis::kGridsquareM);
+    fixed_indexed_ = w.fixed.size();
+  }
+  for (size_t i = 0; i < m; ++i) {
+    const int e = static_cast<int>(order_[i]);
+    const world::Kind& ke = w.kinds[ents.kind[e]];
+    fixed_grid_.query(boxes_[i], [&](uint32_t o, const FixedGrid::Item& it) {
+      ++stats_.fixed_tests;
+      const world::Kind& ko = w.kinds[w.fixed.kind[o]];
+      const Tier tier = opt_.tier != Tier::Auto ? opt_.tier : std::min(top_tier(ke), top_tier(ko));
+      const Vec3 fc = world::fixed_centre(w, o);  // live: craters re-seat objects
+      const double rs = world::fixed_radius(w, o);
+      const bool sphere = tier == Tier::Sphere || is_munition(w, e);
+      const SweepHit h = sphere_sweep(c0_[i], c1_[i], sphere ? r_sphere_[i] : r_bound_[i], fc, fc,
+                                      sphere ? rs : std::max<double>(rs, it.r));
+      ++stats_.sweep_pairs;
+      if (!h.hit) {
+        ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];
+        return;
+      }
+      ++stats_.sweep_hits;
+      Contact k;
+      k.a = e, k.b = static_cast<int>(o), k.b_fixed = true, k.dt_s = dt;
+      if (sphere) {
+        ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];
+        k.point = h.point, k.normal = h.normal, k.toi = h.t, k.method = method_of(Tier::Sphere, true);
+      } else if (!narrow(w, e, static_cast<int>(o), true, tier, h.t, h.t_exit, k)) {
+        return;
+      }
+      touching_.push_back(contact_key(e, static_cast<int>(o), true));
+      candidates_.push_back(k);
+    });
+  }
+
+  // Moving pairs: hashed grid on the swept boxes, then the analytic sweep, then the tiers.
+  moving_.pairs(boxes_, pairs_);
+  for (const auto& [i, j] : pairs_) {
+    int a = static_cast<int>(order_[i]), b = static_cast<int>(order_[j]);
+    size_t ia = i, ib = j;
+    if (ents.owner[a] == b || ents.owner[b] == a) continue;  // a round never meets its shooter
+    if (is_munition(w, a) && is_munition(w, b)) continue;
+    // Canonical order by id, so that the answer does not depend on where entities are stored.
+    if (ents.id[b] < ents.id[a]) std::swap(a, b), std::swap(ia, ib);
+    const bool mun = is_munition(w, a) || is_munition(w, b);
+    const Tier tier = mun ? Tier::Sphere
+                          : opt_.tier != Tier::Auto ? opt_.tier
+                                                    : std::min(top_tier(w.kinds[ents.kind[a]]), top_tier(w.kinds[ents.kind[b]]));
+    const bool sphere = tier == Tier::Sphere;
+    ++stats_.sweep_pairs;
+    const SweepHit h = sphere_sweep(c0_[ia], c1_[ia], sphere ? r_sphere_[ia] : r_bound_[ia], c0_[ib], c1_[ib],
+                                    sphere ? r_sphere_[ib] : r_bound_[ib]);
+    if (!h.hit) {
+      ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];
+      continue;
+    }
+    ++stats_.sweep_hits;
+    Contact k;
+    k.a = a, k.b = b, k.dt_s = dt;
+    if (sphere) {
+      ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];
+      k.point = h.point, k.normal = h.normal, k.toi = h.t, k.method = method_of(Tier::Sphere, false);
+      if (mun) k.method = "continuous-munition";
+    } else if (!narrow(w, a, b, false, tier, h.t, h.t_exit, k)) {
+      continue;
+    }
+    touching_.push_back(contact_key(a, b, false));
+    candidates_.push_back(k);
+  }
+
+  // Deterministic order: time of impact, then the ids (not the storage order).
+  std::sort(candidates_.begin(), candidates_.end(), [&](const Contact& x, const Contact& y) {
+    if (x.toi != y.toi) return x.toi < y.toi;
+    const std::string& xa = ents.id[x.a];
+    const std::string& ya = ents.id[y.a];
+    if (xa != ya) return xa < ya;
+    if (x.b_fixed != y.b_fixed) return x.b_fixed < y.b_fixed;
+    return (x.b_fixed ? w.fixed.id[x.b] : ents.id[x.b]) < (y.b_fixed ? w.fixed.id[y.b] : ents.id[y.b]);
+  });
+}
+
+}  // namespace npsnet::collision

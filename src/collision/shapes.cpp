@@ -1,0 +1,247 @@
+// Shape tiers: oriented boxes (SAT), convex hulls (GJK), polygon meshes (triangle SAT).
+#include "collision/shapes.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace npsnet::collision {
+
+Shape make_shape(const world::Model& m) {
+  Shape s;
+  const Vec3 lo = m.bbox_min.cast<double>(), hi = m.bbox_max.cast<double>();
+  s.box_centre = 0.5 * (lo + hi);
+  s.box_half = (0.5 * (hi - lo)).cwiseMax(Vec3::Constant(1e-3));
+  s.min_half = s.box_half.minCoeff();
+  s.sphere_centre = m.centre.cast<double>();
+  s.hull.reserve(m.vertices.size());
+  for (const Vec3f& v : m.vertices) {
+    s.hull.push_back(v.cast<double>());
+    s.bound_radius = std::max(s.bound_radius, (v.cast<double>() - s.sphere_centre).norm());
+  }
+  for (const world::Face& f : m.faces) {
+    const Vec3 p0 = m.vertices[m.face_vertices[f.first]].cast<double>();
+    for (uint32_t k = 1; k + 1 < f.count; ++k) {
+      const Vec3 p1 = m.vertices[m.face_vertices[f.first + k]].cast<double>();
+      const Vec3 p2 = m.vertices[m.face_vertices[f.first + k + 1]].cast<double>();
+      const double area2 = (p1 - p0).cross(p2 - p0).norm();
+      const double scale = std::max({(p1 - p0).squaredNorm(), (p2 - p0).squaredNorm(), 1e-12});
+      if (area2 <= 1e-9 * scale) continue;  // collinear or repeated vertices: zero area
+      s.tris.push_back({p0, p1, p2});
+    }
+  }
+  return s;
+}
+
+bool box_overlap(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb) {
+  const Mat3& A = pa.rot;
+  const Mat3& B = pb.rot;
+  const Vec3 ca = pa.rot * a.box_centre + pa.pos, cb = pb.rot * b.box_centre + pb.pos;
+  const Vec3 ea = a.box_half, eb = b.box_half;
+  // R = A^T B expresses b's axes in a's frame; t = translation in a's frame.
+  const Mat3 R = A.transpose() * B;
+  Mat3 AbsR;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) AbsR(i, j) = std::abs(R(i, j)) + 1e-9;
+  const Vec3 t = A.transpose() * (cb - ca);
+  for (int i = 0; i < 3; ++i)
+    if (std::abs(t[i]) > ea[i] + eb.dot(AbsR.row(i))) return false;
+  for (int j = 0; j < 3; ++j)
+    if (std::abs(t.dot(R.col(j))) > ea.dot(AbsR.col(j)) + eb[j]) return false;
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const double ra = ea[i1] * AbsR(i2, j) + ea[i2] * AbsR(i1, j);
+      const double rb = eb[j1] * AbsR(i, j2) + eb[j2] * AbsR(i, j1);
+      if (std::abs(t[i2] * R(i1, j) - t[i1] * R(i2, j)) > ra + rb) return false;
+    }
+  }
+  return true;
+}
+
+namespace {
+
+// Support of a posed hull in world direction d.
+Vec3 support(const Shape& s, const Pose& p, const Vec3& d) {
+  const Vec3 dl = p.rot.transpose() * d;
+  double best = -INFINITY;
+  const Vec3* arg = &s.hull[0];
+  for (const Vec3& v : s.hull) {
+    const double x = v.dot(dl);
+    if (x > best) best = x, arg = &v;
+  }
+  return p.rot * *arg + p.pos;
+}
+
+// Reduces the simplex to the feature nearest the origin and sets the new direction. True when
+// the origin is enclosed (tetrahedron).
+bool do_simplex(Vec3* s, int& n, Vec3& d) {
+  auto same = [](const Vec3& x, const Vec3& y) { return x.dot(y) > 0; };
+  if (n == 2) {
+    const Vec3 a = s[1], b = s[0];
+    const Vec3 ab = b - a, ao = -a;
+    if (same(ab, ao)) {
+      d = ab.cross(ao).cross(ab);
+      if (d.squaredNorm() < 1e-30) return true;  // origin on the segment
+    } else {
+      s[0] = a, n = 1, d = ao;
+    }
+    return false;
+  }
+  if (n == 3) {
+    const Vec3 a = s[2], b = s[1], c = s[0];
+    const Vec3 ab = b - a, ac = c - a, ao = -a, abc = ab.cross(ac);
+    if (same(abc.cross(ac), ao)) {
+      if (same(ac, ao)) {
+        s[0] = c, s[1] = a, n = 2, d = ac.cross(ao).cross(ac);
+      } else {
+        s[0] = b, s[1] = a, n = 2;
+        return do_simplex(s, n, d);
+      }
+    } else if (same(ab.cross(abc), ao)) {
+      s[0] = b, s[1] = a, n = 2;
+      return do_simplex(s, n, d);
+    } else {
+      const double side = abc.dot(ao);
+      if (std::abs(side) < 1e-30) return true;  // origin in the triangle's plane, inside it
+      if (side > 0) d = abc;
+      else s[0] = b, s[1] = c, d = -abc;  // keep winding so the normal faces the origin
+    }
+    if (d.squaredNorm() < 1e-30) return true;
+    return false;
+  }
+  // tetrahedron: a newest
+  const Vec3 a = s[3], b = s[2], c = s[1], dd = s[0];
+  const Vec3 ao = -a, ab = b - a, ac = c - a, ad = dd - a;
+  const Vec3 abc = ab.cross(ac), acd = ac.cross(ad), adb = ad.cross(ab);
+  if (same(abc, ao)) {
+    s[0] = c, s[1] = b, s[2] = a, n = 3;
+    return do_simplex(s, n, d);
+  }
+  if (same(acd, ao)) {
+    s[0] = dd, s[1] = c, s[2] = a, n = 3;
+    return do_simplex(s, n, d);
+  }
+  if (same(adb, ao)) {
+    s[0] = b, s[1] = dd, s[2] = a, n = 3;
+    return do_simplex(s, n, d);
+  }
+  return true;
+}
+
+}  // namespace
+
+bool hull_overlap(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb) {
+  if (a.hull.empty() || b.hull.empty()) return false;
+  Vec3 d = (pb.rot * b.sphere_centre + pb.pos) - (pa.rot * a.sphere_centre + pa.pos);
+  if (d.squaredNorm() < 1e-18) d = Vec3::UnitX();
+  Vec3 s[4];
+  int n = 0;
+  s[n++] = support(a, pa, d) - support(b, pb, -d);
+  d = -s[0];
+  for (int it = 0; it < 64; ++it) {
+    if (d.squaredNorm() < 1e-30) return true;  // origin on the simplex
+    const Vec3 p = support(a, pa, d) - support(b, pb, -d);
+    if (p.dot(d) < 0) return false;  // the origin lies beyond the support plane: separated
+    s[n++] = p;
+    if (do_simplex(s, n, d)) return true;
+  }
+  return true;
+}
+
+namespace {
+
+inline void tri_box(const std::array<Vec3, 3>& t, Vec3& lo, Vec3& hi) {
+  lo = t[0].cwiseMin(t[1]).cwiseMin(t[2]);
+  hi = t[0].cwiseMax(t[1]).cwiseMax(t[2]);
+}
+
+// Where segment p-q crosses triangle t (both inclusive); true with the point.
+bool segment_triangle(const Vec3& p, const Vec3& q, const std::array<Vec3, 3>& t, Vec3& x) {
+  const Vec3 n = (t[1] - t[0]).cross(t[2] - t[0]);
+  const double dp = n.dot(p - t[0]), dq = n.dot(q - t[0]);
+  if ((dp > 0 && dq > 0) || (dp < 0 && dq < 0) || dp == dq) return false;
+  const double s = dp / (dp - dq);
+  x = p + s * (q - p);
+  for (int k = 0; k < 3; ++k) {
+    const Vec3& v0 = t[k];
+    const Vec3& v1 = t[(k + 1) % 3];
+    if (n.dot((v1 - v0).cross(x - v0)) < -1e-12 * n.squaredNorm()) return false;
+  }
+  return true;
+}
+
+Vec3 intersection_point(const std::array<Vec3, 3>& t, const std::array<Vec3, 3>& u) {
+  Vec3 sum = Vec3::Zero(), x;
+  int cnt = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (segment_triangle(t[k], t[(k + 1) % 3], u, x)) sum += x, ++cnt;
+    if (segment_triangle(u[k], u[(k + 1) % 3], t, x)) sum += x, ++cnt;
+  }
+  if (cnt > 0) return sum / cnt;
+  // Coplanar or touching only at a point the edges miss by rounding: the nearer vertex pair.
+  double best = INFINITY;
+  Vec3 m = t[0];
+  for (const Vec3& p : t)
+    for (const Vec3& q : u)
+      if ((p - q).squaredNorm() < best) best = (p - q).squaredNorm(), m = 0.5 * (p + q);
+  return m;
+}
+
+}  // namespace
+
+bool tri_tri_overlap(const std::array<Vec3, 3>& t, const std::array<Vec3, 3>& u) {
+  auto separated = [&](const Vec3& ax) {
+    const double l2 = ax.squaredNorm();
+    if (l2 < 1e-20) return false;  // parallel edges: not a valid axis
+    double t0 = t[0].dot(ax), t1 = t0, u0 = u[0].dot(ax), u1 = u0;
+    for (int k = 1; k < 3; ++k) {
+      const double a = t[k].dot(ax), b = u[k].dot(ax);
+      t0 = std::min(t0, a), t1 = std::max(t1, a), u0 = std::min(u0, b), u1 = std::max(u1, b);
+    }
+    const double eps = 1e-12 * std::sqrt(l2);
+    return t1 < u0 - eps || u1 < t0 - eps;
+  };
+  const Vec3 et[3] = {t[1] - t[0], t[2] - t[1], t[0] - t[2]};
+  const Vec3 eu[3] = {u[1] - u[0], u[2] - u[1], u[0] - u[2]};
+  const Vec3 nt = et[0].cross(et[1]), nu = eu[0].cross(eu[1]);
+  if (separated(nt) || separated(nu)) return false;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (separated(et[i].cross(eu[j]))) return false;
+  // Coplanar triangles: the in-plane edge normals separate them.
+  if (nt.cross(nu).squaredNorm() < 1e-12 * nt.squaredNorm() * nu.squaredNorm()) {
+    for (int i = 0; i < 3; ++i)
+      if (separated(nt.cross(et[i])) || separated(nu.cross(eu[i]))) return false;
+  }
+  return true;
+}
+
+bool mesh_overlap(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, ShapeScratch& s, Vec3* point) {
+  // Work in a's model space: b's triangles moved there once.
+  const Mat3 r = pa.rot.transpose() * pb.rot;
+  const Vec3 t = pa.rot.transpose() * (pb.pos - pa.pos);
+  s.tb.resize(b.tris.size());
+  s.lo_b.resize(b.tris.size());
+  s.hi_b.resize(b.tris.size());
+  Vec3 blo = Vec3::Constant(INFINITY), bhi = Vec3::Constant(-INFINITY);
+  for (size_t k = 0; k < b.tris.size(); ++k) {
+    for (int v = 0; v < 3; ++v) s.tb[k][v] = r * b.tris[k][v] + t;
+    tri_box(s.tb[k], s.lo_b[k], s.hi_b[k]);
+    blo = blo.cwiseMin(s.lo_b[k]), bhi = bhi.cwiseMax(s.hi_b[k]);
+  }
+  for (const auto& ta : a.tris) {
+    Vec3 lo, hi;
+    tri_box(ta, lo, hi);
+    if ((lo.array() > bhi.array()).any() || (hi.array() < blo.array()).any()) continue;
+    for (size_t k = 0; k < s.tb.size(); ++k) {
+      if ((lo.array() > s.hi_b[k].array()).any() || (hi.array() < s.lo_b[k].array()).any()) continue;
+      if (!tri_tri_overlap(ta, s.tb[k])) continue;
+      if (point) *point = pa.rot * intersection_point(ta, s.tb[k]) + pa.pos;
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace npsnet::collision

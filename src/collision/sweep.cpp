@@ -1,0 +1,53 @@
+// Analytic swept-sphere time of impact (sweep.hpp).
+#include "collision/sweep.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace npsnet::collision {
+namespace {
+bool finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+}  // namespace
+
+SweepHit sphere_sweep(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, const Vec3& b1, double rb) {
+  if (!finite(a0) || !finite(a1) || !finite(b0) || !finite(b1) || !std::isfinite(ra) || !std::isfinite(rb))
+    throw std::invalid_argument("sphere_sweep: position or radius is not finite (NaN or infinite input)");
+  if (ra < 0 || rb < 0) throw std::invalid_argument("sphere_sweep: negative radius");
+  SweepHit h;
+  const Vec3 d0 = b0 - a0;
+  const Vec3 v = (b1 - b0) - (a1 - a0);
+  const double R = ra + rb;
+  const double A = v.squaredNorm();
+  const double B = d0.dot(v);
+  const double C = d0.squaredNorm() - R * R;
+  if (!std::isfinite(A) || !std::isfinite(B) || !std::isfinite(C))
+    throw std::invalid_argument("sphere_sweep: motion overflows (infinite relative displacement)");
+  if (C < 0) {  // overlapping at the start
+    h.hit = h.started_inside = true;
+    h.t = 0;
+    h.t_exit = A > 0 ? std::min(1.0, (-B + std::sqrt(B * B - A * C)) / A) : 1.0;
+  } else {
+    if (A <= 0 || B >= 0) return h;  // no relative motion, or moving apart (or tangent at t=0)
+    const double disc = B * B - A * C;
+    if (disc < 0) return h;
+    const double s = std::sqrt(disc);
+    // Smaller root, in the form that does not cancel: -B > 0, so -B + s > 0.
+    const double t = C / (-B + s);
+    if (t > 1) return h;
+    h.hit = true;
+    h.t = t;
+    h.t_exit = std::min(1.0, (-B + s) / A);
+  }
+  const Vec3 ca = a0 + h.t * (a1 - a0), cb = b0 + h.t * (b1 - b0);
+  const Vec3 d = cb - ca;
+  const double n = d.norm();
+  if (n > 1e-12 * std::max(1.0, R)) h.normal = d / n;
+  else if (A > 0) h.normal = v.normalized();  // b moves away from a along v a moment later
+  else h.normal = Vec3::UnitX();
+  // Midway between a's surface point and b's surface point on the line of centres.
+  h.point = 0.5 * ((ca + ra * h.normal) + (cb - rb * h.normal));
+  return h;
+}
+
+}  // namespace npsnet::collision
