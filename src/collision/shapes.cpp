@@ -205,6 +205,7 @@ bool tri_tri_overlap(const std::array<Vec3, 3>& t, const std::array<Vec3, 3>& u)
   const Vec3 et[3] = {t[1] - t[0], t[2] - t[1], t[0] - t[2]};
   const Vec3 eu[3] = {u[1] - u[0], u[2] - u[1], u[0] - u[2]};
   const Vec3 nt = et[0].cross(et[1]), nu = eu[0].cross(eu[1]);
+  if (nt.squaredNorm() < 1e-24 || nu.squaredNorm() < 1e-24) return false;  // zero area: no surface
   if (separated(nt) || separated(nu)) return false;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)

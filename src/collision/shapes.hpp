@@ -44,7 +44,8 @@ bool hull_overlap(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb
 // pair of triangles cross the other triangle (a point on their intersection).
 bool mesh_overlap(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, ShapeScratch& s,
                   Vec3* point = nullptr);
-// Triangle-triangle test (separating axes: the two normals and the nine edge cross products).
+// Triangle-triangle test (separating axes: the two normals and the nine edge cross products;
+// coplanar pairs also the in-plane edge normals). A zero-area triangle has no surface: false.
 bool tri_tri_overlap(const std::array<Vec3, 3>& t, const std::array<Vec3, 3>& u);
 
 }  // namespace npsnet::collision

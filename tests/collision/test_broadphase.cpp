@@ -1,0 +1,124 @@
+// The accelerated broad phases agree with brute force on random scenes (crowded and spread,
+// small and large boxes), and the shape tiers nest (mesh contact => hull => box, and hull => sphere).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "collision/collision.hpp"
+#include "support/fixture.hpp"
+
+using namespace npsnet;
+
+TEST(MovingGrid, AgreesWithBruteForceOnRandomScenes) {
+  std::mt19937 rng(11);
+  for (int scene = 0; scene < 20; ++scene) {
+    const int n = 50 + scene * 60;
+    const double span = scene % 2 ? 200.0 : 5000.0;
+    std::uniform_real_distribution<double> pos(0, span), rad(0.5, 6), vel(-30, 30), u(0, 1);
+    std::vector<collision::Box> boxes;
+    for (int i = 0; i < n; ++i) {
+      const Vec3 c0(pos(rng), pos(rng), pos(rng) * 0.01);
+      Vec3 v(vel(rng), vel(rng), 0);
+      if (u(rng) < 0.03) v *= 40;  // a few very fast bodies: "large" boxes
+      boxes.push_back(collision::swept_box(c0, c0 + v, rad(rng)));
+    }
+    std::vector<std::pair<uint32_t, uint32_t>> a, b;
+    collision::MovingGrid g;
+    g.pairs(boxes, a);
+    collision::brute_pairs(boxes, b);
+    EXPECT_EQ(a, b) << "scene " << scene;
+  }
+}
+
+TEST(FixedGrid, QueryListsEachOverlappingObjectOnce) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> pos(0, 2000), rad(0.5, 300);
+  std::vector<Vec3> c;
+  std::vector<float> r;
+  for (int i = 0; i < 3000; ++i) c.emplace_back(pos(rng), pos(rng), 0), r.push_back(static_cast<float>(i % 50 ? rad(rng) / 30 : rad(rng)));
+  collision::FixedGrid g;
+  g.build(c, r, 2000, 2000, thesis::kGridsquareM);
+  for (int q = 0; q < 200; ++q) {
+    const Vec3 p(pos(rng), pos(rng), 0), p1 = p + Vec3(pos(rng) / 10, pos(rng) / 10, 0);
+    const collision::Box b = collision::swept_box(p, p1, 5);
+    std::vector<uint32_t> got, want;
+    g.query(b, [&](uint32_t id, const collision::FixedGrid::Item&) { got.push_back(id); });
+    for (uint32_t i = 0; i < c.size(); ++i) {
+      const float x = static_cast<float>(c[i].x()), y = static_cast<float>(c[i].y());
+      if (x + r[i] >= b.lo[0] && x - r[i] <= b.hi[0] && y + r[i] >= b.lo[1] && y - r[i] <= b.hi[1]) want.push_back(i);
+    }
+    std::sort(got.begin(), got.end());
+    EXPECT_EQ(got, want) << "query " << q;
+  }
+}
+
+TEST(ShapeTiers, NestOnRealModelsAtRandomPoses) {
+  auto w = test::flat_world();
+  std::vector<collision::Shape> shapes;
+  for (int i = 0; i < w.models.size(); ++i) shapes.push_back(collision::make_shape(w.models[i]));
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> pick(0, w.models.size() - 1);
+  std::uniform_real_distribution<double> ang(0, 360), off(-1, 1);
+  collision::ShapeScratch scratch;
+  int mesh_hits = 0, hull_only = 0, box_only = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const auto& a = shapes[static_cast<size_t>(pick(rng))];
+    const auto& b = shapes[static_cast<size_t>(pick(rng))];
+    collision::Pose pa, pb;
+    pa.rot = world::pose_rotation(ang(rng), ang(rng) / 8 - 22, ang(rng) / 8 - 22);
+    pb.rot = world::pose_rotation(ang(rng), ang(rng) / 8 - 22, ang(rng) / 8 - 22);
+    const double reach = a.bound_radius + b.bound_radius;
+    pb.pos = Vec3(off(rng), off(rng), off(rng) * 0.3) * reach;
+    const bool box = collision::box_overlap(a, pa, b, pb);
+    const bool hull = collision::hull_overlap(a, pa, b, pb);
+    Vec3 p;
+    const bool mesh = collision::mesh_overlap(a, pa, b, pb, scratch, &p);
+    const double dc = ((pb.rot * b.sphere_centre + pb.pos) - (pa.rot * a.sphere_centre + pa.pos)).norm();
+    // The hull lies inside both the bounding sphere and the box (the box's corners may stick
+    // out of the sphere, so the box is only a test between the sphere and the hull).
+    if (hull) EXPECT_LE(dc, reach * 1.0001);
+    if (hull) EXPECT_TRUE(box) << trial;
+    if (mesh) {
+      EXPECT_TRUE(hull) << trial;
+      ++mesh_hits;
+      // The point lies on both bodies' bounds.
+      EXPECT_LE((p - (pa.rot * a.sphere_centre + pa.pos)).norm(), a.bound_radius * 1.001);
+      EXPECT_LE((p - (pb.rot * b.sphere_centre + pb.pos)).norm(), b.bound_radius * 1.001);
+    }
+    hull_only += hull && !mesh;
+    box_only += box && !hull;
+  }
+  EXPECT_GT(mesh_hits, 100);
+  EXPECT_GT(box_only, 10) << "boxes are coarser than hulls";
+  EXPECT_GT(hull_only, 10) << "hulls are coarser than meshes";
+}
+
+TEST(ShapeTiers, UnitCubesSeparateAtTheirFaces) {
+  world::Model m;
+  for (int i = 0; i < 8; ++i) m.vertices.emplace_back(i & 1 ? 1.f : -1.f, i & 2 ? 1.f : -1.f, i & 4 ? 1.f : -1.f);
+  const uint32_t f[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (auto& q : f) {
+    m.faces.push_back(world::Face{static_cast<uint32_t>(m.face_vertices.size()), 4});
+    for (uint32_t k : q) m.face_vertices.push_back(k);
+  }
+  m.bbox_min = Vec3f(-1, -1, -1), m.bbox_max = Vec3f(1, 1, 1);
+  const auto s = collision::make_shape(m);
+  collision::ShapeScratch sc;
+  collision::Pose a, b;
+  for (double x : {1.9, 1.999, 2.001, 2.1}) {
+    b.pos = Vec3(x, 0.3, 0.2);
+    const bool want = x < 2;
+    EXPECT_EQ(collision::box_overlap(s, a, s, b), want) << x;
+    EXPECT_EQ(collision::hull_overlap(s, a, s, b), want) << x;
+    EXPECT_EQ(collision::mesh_overlap(s, a, s, b, sc), want) << x;
+  }
+  // Rotated 45 degrees about z: the edge reaches sqrt(2).
+  b.rot = Eigen::AngleAxisd(M_PI / 4, Vec3::UnitZ()).toRotationMatrix();
+  for (double x : {2.35, 2.45}) {
+    b.pos = Vec3(x, 0, 0);
+    const bool want = x < 1 + std::sqrt(2.0);
+    EXPECT_EQ(collision::box_overlap(s, a, s, b), want) << x;
+    EXPECT_EQ(collision::hull_overlap(s, a, s, b), want) << x;
+    EXPECT_EQ(collision::mesh_overlap(s, a, s, b, sc), want) << x;
+  }
+}

@@ -1,0 +1,139 @@
+// Stability where methods fail: grazing contact, bodies that start overlapping, zero relative
+// velocity, coincident centres, degenerate polygons, huge and tiny dt, NaN and infinite input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "collision/collision.hpp"
+#include "support/fixture.hpp"
+
+using namespace npsnet;
+using collision::sphere_sweep;
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+}  // namespace
+
+TEST(Stability, GrazingContactTouchesOnceAndNearMissDoesNot) {
+  // b passes a at exactly ra + rb = 3 m: one touching instant, at t = 0.5.
+  const auto h = sphere_sweep(Vec3(0, 0, 0), Vec3(0, 0, 0), 1, Vec3(-10, 3, 0), Vec3(10, 3, 0), 2);
+  ASSERT_TRUE(h.hit);
+  EXPECT_NEAR(h.t, 0.5, 1e-12);
+  EXPECT_NEAR(h.t_exit, h.t, 1e-6);
+  EXPECT_NEAR(h.normal.y(), 1.0, 1e-9);
+  EXPECT_NEAR(h.point.y(), 1.0, 1e-9);
+  EXPECT_FALSE(sphere_sweep(Vec3(0, 0, 0), Vec3(0, 0, 0), 1, Vec3(-10, 3 + 1e-6, 0), Vec3(10, 3 + 1e-6, 0), 2).hit);
+}
+
+TEST(Stability, BodiesThatStartOverlappingHitAtTimeZero) {
+  const auto h = sphere_sweep(Vec3(0, 0, 0), Vec3(1, 0, 0), 1, Vec3(1.5, 0, 0), Vec3(10, 0, 0), 1);
+  ASSERT_TRUE(h.hit);
+  EXPECT_TRUE(h.started_inside);
+  EXPECT_EQ(h.t, 0.0);
+  EXPECT_GT(h.t_exit, 0.0);
+  EXPECT_LE(h.t_exit, 1.0);
+}
+
+TEST(Stability, ZeroRelativeVelocity) {
+  // Apart and moving together: never meet. Overlapping and moving together: inside all tick.
+  EXPECT_FALSE(sphere_sweep(Vec3(0, 0, 0), Vec3(5, 0, 0), 1, Vec3(3, 0, 0), Vec3(8, 0, 0), 1).hit);
+  const auto h = sphere_sweep(Vec3(0, 0, 0), Vec3(5, 0, 0), 1, Vec3(1, 0, 0), Vec3(6, 0, 0), 1);
+  EXPECT_TRUE(h.hit && h.started_inside);
+  EXPECT_EQ(h.t_exit, 1.0);
+}
+
+TEST(Stability, CoincidentCentresGiveAUnitNormal) {
+  const auto h = sphere_sweep(Vec3(1, 1, 1), Vec3(1, 1, 1), 1, Vec3(1, 1, 1), Vec3(1, 1, 1), 1);
+  ASSERT_TRUE(h.hit);
+  EXPECT_NEAR(h.normal.norm(), 1.0, 1e-12);
+  EXPECT_TRUE(finite(h.point));
+  const auto g = sphere_sweep(Vec3(0, 0, 0), Vec3(0, 0, 0), 1, Vec3(0, 0, 0), Vec3(0, 4, 0), 1);
+  EXPECT_NEAR(g.normal.y(), 1.0, 1e-12) << "along the relative motion";
+  // The whole detector and response with two tanks at the same place.
+  auto w = test::flat_world();
+  test::add_vehicle(w, "a", "m1a1", 500, 500, 10, 0);
+  test::add_vehicle(w, "b", "m1a1", 500, 500, 40, 0);
+  test::index_fixed(w);
+  collision::Detector d(collision::Options{});
+  std::vector<collision::Contact> c;
+  d.detect(w, c);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_TRUE(finite(c[0].point));
+  EXPECT_NEAR(c[0].normal.norm(), 1.0, 1e-9);
+  world::Changes ch;
+  collision::respond(w, c, ch);
+  for (const auto& x : ch.entities) EXPECT_TRUE(finite(x.vel) && finite(x.shift));
+}
+
+TEST(Stability, DegeneratePolygonsAreDroppedNotPropagated) {
+  world::Model m;
+  m.vertices = {Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(2, 0, 0), Vec3f(0, 1, 0), Vec3f(0, 0, 1)};
+  // A face of three collinear vertices, a face repeating a vertex, and one good triangle.
+  m.face_vertices = {0, 1, 2, 0, 0, 3, 0, 1, 3};
+  m.faces = {world::Face{0, 3, Vec3f(0, 0, 0)}, world::Face{3, 3, Vec3f(0, 0, 0)}, world::Face{6, 3, Vec3f(0, 0, 1)}};
+  m.bbox_min = Vec3f(0, 0, 0), m.bbox_max = Vec3f(2, 1, 1), m.centre = Vec3f(1, 0.5, 0.5);
+  const collision::Shape s = collision::make_shape(m);
+  EXPECT_EQ(s.tris.size(), 1u);
+  // Zero-area triangles in the tri-tri test: no crash, no false hit far away.
+  const std::array<Vec3, 3> flat{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)};
+  const std::array<Vec3, 3> far{Vec3(0, 5, 0), Vec3(1, 5, 0), Vec3(0, 6, 0)};
+  EXPECT_FALSE(collision::tri_tri_overlap(flat, far));
+  // Haines' test on a zero-area polygon and a ray against the degenerate faces.
+  const float u[3] = {0, 1, 2}, v[3] = {0, 0, 0};
+  EXPECT_FALSE(collision::haines_inside(u, v, 3));
+  const auto hit = collision::ray_model(m, Vec3(0.2, 0.2, 5), Vec3(0, 0, -1), 0, 10);
+  EXPECT_TRUE(hit.hit);
+  EXPECT_EQ(hit.face, 2);
+  collision::Pose p;
+  collision::ShapeScratch scratch;
+  EXPECT_TRUE(collision::mesh_overlap(s, p, s, p, scratch));
+  EXPECT_TRUE(collision::hull_overlap(s, p, s, p));
+}
+
+TEST(Stability, HugeAndTinyDt) {
+  for (double dt : {1e-9, 1e-3, 10.0, 1e4}) {
+    auto w = test::flat_world();
+    // Ends 200 m apart after closing at 20 m/s: they met in the tick only when dt >= ~10 s.
+    test::add_vehicle(w, "a", "m1a1", 1100, 1000, 90, 10);
+    test::add_vehicle(w, "b", "m1a1", 900, 1000, 270, 10);
+    test::index_fixed(w);
+    collision::Detector d(collision::Options{collision::Method::Continuous, collision::Tier::Auto, dt});
+    std::vector<collision::Contact> c;
+    d.detect(w, c);
+    if (dt >= 10) {
+      ASSERT_EQ(c.size(), 1u) << dt;
+      EXPECT_TRUE(c[0].toi >= 0 && c[0].toi <= 1);
+      EXPECT_TRUE(finite(c[0].point));
+    } else {
+      EXPECT_TRUE(c.empty()) << dt;
+    }
+  }
+}
+
+TEST(Stability, NaNAndInfiniteInputIsRejectedWithAnError) {
+  EXPECT_THROW(sphere_sweep(Vec3(NAN, 0, 0), Vec3(0, 0, 0), 1, Vec3(3, 0, 0), Vec3(3, 0, 0), 1), std::invalid_argument);
+  EXPECT_THROW(sphere_sweep(Vec3(0, 0, 0), Vec3(kInf, 0, 0), 1, Vec3(3, 0, 0), Vec3(3, 0, 0), 1), std::invalid_argument);
+  EXPECT_THROW(sphere_sweep(Vec3(0, 0, 0), Vec3(0, 0, 0), NAN, Vec3(3, 0, 0), Vec3(3, 0, 0), 1), std::invalid_argument);
+  EXPECT_THROW(sphere_sweep(Vec3(0, 0, 0), Vec3(0, 0, 0), -1, Vec3(3, 0, 0), Vec3(3, 0, 0), 1), std::invalid_argument);
+  EXPECT_THROW(sphere_sweep(Vec3(-1e300, 0, 0), Vec3(1e300, 0, 0), 1, Vec3(1e300, 0, 0), Vec3(-1e300, 0, 0), 1),
+               std::invalid_argument);
+  for (int field = 0; field < 3; ++field) {
+    auto w = test::flat_world();
+    const int a = test::add_vehicle(w, "bad", "m1a1", 500, 500, 0, 0);
+    test::add_vehicle(w, "good", "m1a1", 600, 500, 0, 0);
+    test::index_fixed(w);
+    if (field == 0) w.ents.pos[a].x() = NAN;
+    if (field == 1) w.ents.vel[a].y() = kInf;
+    if (field == 2) w.ents.heading_deg[a] = NAN;
+    collision::Detector d(collision::Options{});
+    std::vector<collision::Contact> c;
+    try {
+      d.detect(w, c);
+      ADD_FAILURE() << "no error for field " << field;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("'bad'"), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(c.empty());
+  }
+}
