@@ -30,6 +30,6 @@ void follow_terrain(world::World& w, int e);
 // which a missile then tracks). Returns the new munition's entity index, or -1 when the shooter
 // cannot fire (dead, no rounds left). he_round: lowest ballistic arc that reaches the point at
 // the kind's muzzle speed (45 degrees when out of range).
-int fire(world::World& w, int shooter, int munition_kind, const Vec3& target_point, int target);
+int fire(world::World& w, int shooter, int munition_kind, Vec3 target_point, int target);
 
 }  // namespace npsnet::dynamics

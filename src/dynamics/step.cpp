@@ -176,7 +176,7 @@ void step(world::World& w, double dt, std::vector<GroundImpact>& impacts) {
   }
 }
 
-int fire(world::World& w, int shooter, int munition_kind, const Vec3& target_point, int target) {
+int fire(world::World& w, int shooter, int munition_kind, const Vec3 target_point, int target) {  // by value: it may point into ents
   auto& ents = w.ents;
   const world::Kind& sk = w.kinds[ents.kind[shooter]];
   if (ents.state[shooter] + 1 >= static_cast<int>(sk.states.size()) || ents.rounds[shooter] <= 0) return -1;

@@ -12,7 +12,7 @@ struct RunOptions {
   std::optional<double> seconds;
   std::optional<long> frames;
   double dt = 0.1;                             // s (the thesis's 10 Hz)
-  std::filesystem::path events;                // default: <snapshots>/../events.jsonl? see run.cpp
+  std::filesystem::path events;                // default: <snapshots>/events.jsonl
   std::filesystem::path snapshots = "screenshots";
   bool window = false, realtime = false;
   std::string net = "off";

@@ -1,9 +1,14 @@
 #include <chrono>
+#include <cstdlib>
+#include <memory>
 #include <cmath>
 #include <cstdio>
 #include <thread>
 
 #include "node/options.hpp"
+#ifdef NPSNET_HAVE_RENDER
+#include "node/snapshots.hpp"
+#endif
 #include "node/simulation.hpp"
 #include "world/scenario.hpp"
 
@@ -23,8 +28,14 @@ double wall_now() {
 int run_command(const RunOptions& opt) {
   RunOptions o = opt;
   if (o.scenario.empty()) o.scenario = source_dir() / "scenarios" / "default.toml";
-  if (o.window) {
-    std::fprintf(stderr, "--window: the GLFW window is not built yet (issue 4)\n");
+#ifndef NPSNET_HAVE_RENDER
+  if (o.window || o.snapshot_every) {
+    std::fprintf(stderr, "--window/--snapshot-every: this build has no renderer (NPSNET_RENDER=OFF)\n");
+    return 2;
+  }
+#endif
+  if (o.window && !std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY")) {
+    std::fprintf(stderr, "--window: no display (DISPLAY is not set); run headless without --window\n");
     return 2;
   }
   if (o.net != "off") {
@@ -53,13 +64,37 @@ int run_command(const RunOptions& opt) {
     std::fprintf(stderr, "npsnet: %s: %zu fixed objects, %zu vehicles, %ld ticks of %.3f s\n", o.scenario.string().c_str(),
                  w.fixed.size(), w.ents.size(), ticks, o.dt);
   Simulation sim(std::move(w), sc, log, o.dt);
+#ifdef NPSNET_HAVE_RENDER
+  std::unique_ptr<Snapshots> snaps;
+  if (!o.no_render || o.window) {
+    try {
+      snaps = std::make_unique<Snapshots>(SnapshotOptions{o.snapshots, o.width, o.height, o.snapshot_every.value_or(0), o.window},
+                                          sim.world(), o.dt, log);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "npsnet: renderer: %s\n", e.what());
+      return 1;
+    }
+    sim.before_apply = [&](const world::World& ww, const world::Changes& c) { snaps->before_apply(ww, c); };
+    sim.on_tick = [&](const TickReport& r) { snaps->after_tick(sim.world(), r.changes, r.applied); };
+  }
+  auto more = [&] { return snaps && snaps->pending(); };
+#else
+  auto more = [] { return false; };
+#endif
+  const bool paced = o.realtime || o.window;
   if (o.start_at)
     while (wall_now() < *o.start_at) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   const auto t0 = std::chrono::steady_clock::now();
   long next_progress = ticks / 10;
-  for (long i = 0; i < ticks; ++i) {
+  // The run goes on past its length (at most kResultDelayS more) until every result frame is written.
+  const long extra = static_cast<long>(std::ceil(2.0 / o.dt)) + 1;
+  long done = 0;
+  for (long i = 0; i < ticks || (more() && i < ticks + extra); ++i, ++done) {
     sim.tick();
-    if (o.realtime) std::this_thread::sleep_until(t0 + std::chrono::duration<double>((i + 1) * o.dt));
+#ifdef NPSNET_HAVE_RENDER
+    if (o.window && snaps && !snaps->present(sim.world())) break;  // window closed
+#endif
+    if (paced) std::this_thread::sleep_until(t0 + std::chrono::duration<double>((i + 1) * o.dt));
     if (!o.quiet && i + 1 >= next_progress && ticks >= 10) {
       std::fprintf(stderr, "npsnet: t = %.1f s (%ld%%)\n", sim.world().t, (i + 1) * 100 / ticks);
       next_progress += ticks / 10;
@@ -68,8 +103,8 @@ int run_command(const RunOptions& opt) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   log.flush();
   if (!o.quiet) {
-    std::fprintf(stderr, "npsnet: done: %ld ticks in %.2f s wall (%.3f ms/tick); events -> %s\n", ticks, wall,
-                 1000 * wall / std::max(1L, ticks), o.events.string().c_str());
+    std::fprintf(stderr, "npsnet: done: %ld ticks in %.2f s wall (%.3f ms/tick); events -> %s\n", done, wall,
+                 1000 * wall / std::max(1L, done), o.events.string().c_str());
     for (const auto& [k, n] : log.counts()) std::fprintf(stderr, "  %-12s %d\n", k.c_str(), n);
     const auto& s = sim.stats();
     std::fprintf(stderr, "  collision tests: fixed %lld, L1 %lld, L2 %lld, L3 %lld (rejected %lld), contacts %lld\n",

@@ -44,7 +44,7 @@ nlohmann::json Simulation::base(const char* type) const {
   return {{"event", type}, {"t", round3(w_.t)}, {"frame", w_.frame}};
 }
 
-int Simulation::fire(int shooter, int munition_kind, const Vec3& point, int target_entity, const std::string& target_name) {
+int Simulation::fire(int shooter, int munition_kind, const Vec3 point, int target_entity, const std::string target_name) {
   const int m = dynamics::fire(w_, shooter, munition_kind, point, target_entity);
   if (m < 0) return -1;
   fired_.push_back(m);
@@ -162,6 +162,7 @@ void Simulation::tick() {
   append(changes_, injected_);
   injected_.clear();
   for (const auto& im : impacts_) collision::detonate(w_, im.munition, im.point, -1, changes_);
+  if (before_apply) before_apply(w_, changes_);
   world::apply(w_, changes_, applied_);
   log_changes();
   // Autonomous vehicles near a detonation they did not cause have been fired upon.

@@ -30,6 +30,8 @@ class Simulation {
   double dt() const { return dt_; }
   const collision::DetectStats& stats() const { return detector_.stats(); }
   std::function<void(const TickReport&)> on_tick;  // renderer, snapshots, network
+  // Runs after the outcomes are decided, before they are applied (imminent snapshots).
+  std::function<void(const world::World&, const world::Changes&)> before_apply;
   // Network hooks (the net<->world bridge):
   //  before_step runs first in every tick (remote entity poses, received PDUs);
   //  decides(contact) says whether this node decides a contact (the owner of the lower DIS
@@ -41,7 +43,8 @@ class Simulation {
   void inject(const world::Changes& c);
 
   // Fires `munition_kind` from `shooter` at an entity or a point, logging the fire event.
-  int fire(int shooter, int munition_kind, const Vec3& point, int target_entity, const std::string& target_name);
+  // point and target_name by value: callers pass references into the entity arrays, which grow.
+  int fire(int shooter, int munition_kind, Vec3 point, int target_entity, std::string target_name);
   int find_entity(const std::string& id) const;
 
  private:

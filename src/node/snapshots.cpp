@@ -1,0 +1,150 @@
+#ifdef NPSNET_HAVE_RENDER
+#include "node/snapshots.hpp"
+
+#include <cmath>
+
+#include "render/renderer.hpp"
+#include "world/pose.hpp"
+
+namespace npsnet::node {
+
+namespace {
+// The HUD of the driven vehicle `d` in entity arrays `ents` (the world's own or a past copy).
+render::Hud make_hud(const world::World& w, const world::Entities& ents, int d) {
+  render::Hud hud;
+  if (d < 0 || d >= static_cast<int>(ents.size())) return hud;
+  hud.show = true;
+  hud.speed_kmh = mps2kmh(ents.vel[d].head<2>().norm());
+  hud.heading_deg = ents.heading_deg[d], hud.pitch_deg = ents.pitch_deg[d], hud.roll_deg = ents.roll_deg[d];
+  hud.rounds = ents.rounds[d], hud.fuel_l = ents.fuel_l[d];
+  hud.label = ents.id[d] + " " + w.kinds[ents.kind[d]].name;
+  return hud;
+}
+
+std::string sanitize(const std::string& s) {
+  std::string o;
+  for (char c : s) o += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-') ? c : '_';
+  return o;
+}
+}  // namespace
+
+Snapshots::Snapshots(const SnapshotOptions& o, const world::World& w, double dt, EventLog& log) : opt_(o), log_(log) {
+  render::RenderOptions ro;
+  ro.width = o.width, ro.height = o.height, ro.window = o.window;
+  ro.shader_dir = NPSNET_SHADER_DIR;
+  r_ = std::make_unique<render::Renderer>(ro, w);
+  std::filesystem::create_directories(o.dir);
+  ring_.resize(static_cast<size_t>(std::ceil(kImminentLeadS / dt)) + 1);
+  next_periodic_ = 0;
+}
+
+Snapshots::~Snapshots() = default;
+
+int Snapshots::driven(const world::World& w) const {
+  for (size_t e = 0; e < w.ents.size(); ++e)
+    if (w.ents.local[e] && w.kinds[w.ents.kind[e]].mobility != world::Mobility::Munition) return static_cast<int>(e);
+  return -1;
+}
+
+void Snapshots::write(const world::World& w, const std::string& name, const State* past, const Vec3& eye,
+                      const Vec3& target, double t) {
+  render::SceneView v;
+  v.world = &w;
+  v.ents = past ? &past->ents : &w.ents;
+  v.fixed_state = past ? &past->fixed_state : &w.fixed.state;
+  v.t = t;
+  v.driven = driven(w);
+  const render::Hud hud = make_hud(w, *v.ents, v.driven);
+  render::Camera cam;
+  cam.eye = eye, cam.target = target;
+  r_->render(v, cam, hud, true);
+  const auto file = opt_.dir / name;
+  if (!r_->write_png(file)) throw std::runtime_error(file.string() + ": cannot write PNG");
+  nlohmann::json ev = {{"event", "snapshot"}, {"t", std::round(w.t * 1000) / 1000}, {"frame", w.frame},
+                       {"file", file.string()}, {"scene_t", std::round(t * 1000) / 1000}};
+  log_.write(ev);
+  ++written_;
+}
+
+void Snapshots::before_apply(const world::World& w, const world::Changes& c) {
+  auto snap = [&](const std::string& kind, int a, const std::string& a_id, const std::string& b_id, const Vec3& pa,
+                  const Vec3& pb) {
+    if (a < 0 || !w.ents.snapshots[a]) return;
+    char num[16];
+    std::snprintf(num, sizeof num, "%04d", ++counter_);
+    const std::string base = std::string(num) + "-" + kind + "-" + sanitize(a_id) + "-" + sanitize(b_id);
+    const render::Camera cam = render::look_at_pair(w, pa, pb);
+    // the oldest buffered state: about kImminentLeadS ago
+    const State* past = nullptr;
+    if (filled_ > 0) past = &ring_[(head_ + ring_.size() - filled_) % ring_.size()];
+    write(w, base + "-imminent.png", past, cam.eye, cam.target, past ? past->t : w.t);
+    pending_.push_back({w.t + kResultDelayS, base, cam.eye, cam.target});
+  };
+  const auto& ents = w.ents;
+  for (const auto& r : c.collisions) {
+    const bool snap_a = ents.snapshots[r.a];
+    const bool snap_b = !r.b_fixed && ents.snapshots[r.b];
+    if (!snap_a && !snap_b) continue;
+    if (!r.b_fixed && w.kinds[ents.kind[r.b]].mobility == world::Mobility::Munition) continue;  // the detonation covers it
+    if (w.kinds[ents.kind[r.a]].mobility == world::Mobility::Munition) continue;
+    const Vec3 pa = world::entity_centre(w, r.a);
+    const Vec3 pb = r.b_fixed ? world::fixed_centre(w, r.b) : world::entity_centre(w, r.b);
+    const int who = snap_a ? r.a : r.b;
+    snap("collision", who, ents.id[r.a], r.b_fixed ? w.fixed.id[r.b] : ents.id[r.b], pa, pb);
+  }
+  for (const auto& d : c.detonations) {
+    const int shooter = ents.owner[d.munition];
+    if (shooter < 0 || !ents.snapshots[shooter]) continue;
+    const Vec3 pb = d.target >= 0 ? world::entity_centre(w, d.target) : d.point;
+    snap("detonation", shooter, ents.id[d.munition], d.target >= 0 ? ents.id[d.target] : "ground", d.point + Vec3(0, 0, 1), pb);
+  }
+}
+
+void Snapshots::after_tick(const world::World& w, const world::Changes& c, const world::Applied& a) {
+  for (const auto& d : c.detonations) r_->add_explosion(d.point, w.t, d.target >= 0 ? 1.5f : 1.0f);
+  for (int e : a.killed) {
+    const Vec3 p = world::entity_centre(w, e);
+    if (w.kinds[w.ents.kind[e]].explosive) r_->add_explosion(p, w.t, 1.5f);
+    r_->add_fire(p, w.t, 20.0);
+  }
+  for (const auto& p : a.terrain_patches) r_->terrain_changed(p);
+  for (size_t i = 0; i < pending_.size();) {
+    if (pending_[i].due_t <= w.t + 1e-9) {
+      write(w, pending_[i].base + "-result.png", nullptr, pending_[i].eye, pending_[i].target, w.t);
+      pending_.erase(pending_.begin() + static_cast<long>(i));
+    } else {
+      ++i;
+    }
+  }
+  if (opt_.every_s > 0 && w.t + 1e-9 >= next_periodic_) {
+    const int d = driven(w);
+    if (d >= 0) {
+      const auto cam = render::vehicle_eye(w.ents.pos[d], w.ents.heading_deg[d], w.ents.pitch_deg[d], 3.0);
+      char name[64];
+      std::snprintf(name, sizeof name, "%04d-periodic-t%07.1f.png", ++counter_, w.t);
+      write(w, name, nullptr, cam.eye, cam.target, w.t);
+    }
+    next_periodic_ += opt_.every_s;
+  }
+  // buffer this state for later imminent frames (slots reuse their storage)
+  State& s = ring_[head_];
+  s.t = w.t;
+  s.ents = w.ents;
+  s.fixed_state = w.fixed.state;
+  head_ = (head_ + 1) % ring_.size();
+  filled_ = std::min(filled_ + 1, ring_.size());
+}
+
+bool Snapshots::present(const world::World& w) {
+  const int d = driven(w);
+  render::Camera cam;
+  if (d >= 0) cam = render::vehicle_eye(w.ents.pos[d], w.ents.heading_deg[d], w.ents.pitch_deg[d], 3.0);
+  render::SceneView v;
+  v.world = &w, v.t = w.t, v.driven = d;
+  const render::Hud hud = make_hud(w, w.ents, d);
+  r_->render(v, cam, hud, true);
+  return !r_->window_should_close();
+}
+
+}  // namespace npsnet::node
+#endif  // NPSNET_HAVE_RENDER
