@@ -95,8 +95,13 @@ void Snapshots::before_apply(const world::World& w, const world::Changes& c) {
   for (const auto& d : c.detonations) {
     const int shooter = ents.owner[d.munition];
     if (shooter < 0 || !ents.snapshots[shooter]) continue;
-    const Vec3 pb = d.target >= 0 ? world::entity_centre(w, d.target) : d.point;
-    snap("detonation", shooter, ents.id[d.munition], d.target >= 0 ? ents.id[d.target] : "ground", d.point + Vec3(0, 0, 1), pb);
+    // Frame ~40 m of ground around the point of impact, across the line of fire.
+    Vec2 dir = (d.point - ents.pos[shooter]).head<2>();
+    dir = dir.norm() > 1e-6 ? Vec2(dir.normalized()) : Vec2(1, 0);
+    const Vec3 side(-dir.y() * 20, dir.x() * 20, 0);
+    const Vec3 pa = d.target >= 0 ? world::entity_centre(w, d.target) - side : d.point - side;
+    const Vec3 pb = d.target >= 0 ? world::entity_centre(w, d.target) + side : d.point + side;
+    snap("detonation", shooter, ents.id[d.munition], d.target >= 0 ? ents.id[d.target] : "ground", pa, pb);
   }
 }
 

@@ -1,0 +1,73 @@
+// The npsnet binary's contract: exit codes, `check` output, nothing written on bad input.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "support/fixture.hpp"
+
+using namespace npsnet;
+
+namespace {
+struct Out {
+  int rc;
+  std::string text;
+};
+Out run(const std::string& args) {
+  const std::string cmd = std::string(NPSNET_BINARY_DIR) + "/npsnet " + args + " 2>&1";
+  Out o{-1, ""};
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return o;
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, p)) o.text.append(buf, n);
+  const int st = pclose(p);
+  o.rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return o;
+}
+}  // namespace
+
+TEST(Cli, CheckBundledFilesIsClean) {
+  const auto o = run("check " + test::source("scenarios/default.toml").string() + " " +
+                     test::source("models/kinds.toml").string() + " " + test::source("terrain/default-objects.csv").string() +
+                     " " + test::source("models/tree.obj").string() + " " + test::source("terrain/default.tif").string());
+  EXPECT_EQ(o.rc, 0) << o.text;
+  EXPECT_NE(o.text.find("ok: 5 file(s)"), std::string::npos) << o.text;
+}
+
+TEST(Cli, CheckReportsEveryProblemAndExits2) {
+  const auto f = test::write_file("cli-objs.csv", "id,kind,x_m,y_m,heading_deg\nTOOLONGID1234,tree,1,1,0\nX,oak,1,1,0\n");
+  const auto o = run("check " + f.string() + " /nonexistent/file.toml");
+  EXPECT_EQ(o.rc, 2);
+  EXPECT_NE(o.text.find(f.string() + ":2: id: 'TOOLONGID1234' must be 1 to 11 characters"), std::string::npos) << o.text;
+  EXPECT_NE(o.text.find(f.string() + ":3: kind: unknown kind 'oak'"), std::string::npos) << o.text;
+  EXPECT_NE(o.text.find("/nonexistent/file.toml:0: file: file not found"), std::string::npos) << o.text;
+}
+
+TEST(Cli, BadScenarioExits2AndWritesNothing) {
+  const auto f = test::write_file("cli-bad.toml", "[world]\nterrain = \"missing.tif\"\n");
+  const auto events = std::filesystem::temp_directory_path() / "npsnet-tests" / "cli-bad-events.jsonl";
+  std::filesystem::remove(events);
+  const auto o = run("run --scenario " + f.string() + " --events " + events.string() + " --no-render");
+  EXPECT_EQ(o.rc, 2) << o.text;
+  EXPECT_NE(o.text.find(":2: world.terrain: file not found"), std::string::npos) << o.text;
+  EXPECT_FALSE(std::filesystem::exists(events));
+}
+
+TEST(Cli, BadFlagsExit2) {
+  EXPECT_EQ(run("run --dt 5").rc, 2);
+  EXPECT_EQ(run("run --size 0x10 --no-render").rc, 2);
+  EXPECT_EQ(run("frobnicate").rc, 2);
+}
+
+TEST(Cli, HeadlessRunWritesEventLog) {
+  const auto dir = std::filesystem::temp_directory_path() / "npsnet-tests" / "cli-run";
+  std::filesystem::remove_all(dir);
+  const auto o = run("run --seconds 10 --no-render --quiet --events " + (dir / "e.jsonl").string());
+  EXPECT_EQ(o.rc, 0) << o.text;
+  std::ifstream in(dir / "e.jsonl");
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) n += line.find("\"event\"") != std::string::npos;
+  EXPECT_GT(n, 10);
+}
