@@ -102,3 +102,27 @@ TEST(Autonomous, ReturnsFireOrFlees) {
   for (int i = 0; i < 10; ++i) dynamics::step(w, 0.1, imp);
   EXPECT_GT(w.ents.pos[b].y(), 800 + 15);
 }
+
+TEST(Vehicles, ShipsStayOnWater) {
+  // Terrain rising eastward: water (level 150) only where x < 500.
+  auto w = test::flat_world(100.0, 0.1);
+  w.water_level_m = 150.0;
+  const int s = test::add_vehicle(w, "s", "patrol_ship", 300, 1000, 90, 10);
+  w.ents.pos[s].z() = w.water_level_m;
+  std::vector<dynamics::GroundImpact> imp;
+  for (int i = 0; i < 2000; ++i) {
+    dynamics::step(w, 0.1, imp);
+    ASSERT_TRUE(w.is_water(w.ents.pos[s].x(), w.ents.pos[s].y())) << "tick " << i;
+    ASSERT_DOUBLE_EQ(w.ents.pos[s].z(), w.water_level_m);
+  }
+}
+
+TEST(Vehicles, AircraftHoldAltitudeAboveTerrain) {
+  auto w = test::flat_world(100.0, 0.05);
+  const int a = test::add_vehicle(w, "a", "f16", 100, 1000, 90, 200);
+  w.ents.pos[a].z() = 300;
+  std::vector<dynamics::GroundImpact> imp;
+  for (int i = 0; i < 80; ++i) dynamics::step(w, 0.1, imp);  // 1.6 km east: ground rises 80 m
+  EXPECT_DOUBLE_EQ(w.ents.pos[a].z(), 300.0);
+  EXPECT_GT(w.ents.pos[a].x(), 1500);
+}
