@@ -5,16 +5,9 @@
 
 namespace npsnet::collision {
 
-Box swept_box(const Vec3& c0, const Vec3& c1, double r) {
-  Box b;
-  for (int k = 0; k < 3; ++k) {
-    b.lo[k] = static_cast<float>(std::min(c0[k], c1[k]) - r);
-    b.hi[k] = static_cast<float>(std::max(c0[k], c1[k]) + r);
-  }
-  return b;
-}
-
 namespace {
+// floor(v) for |v| < 2^30 without a libm call.
+inline int32_t ifloor(double v) { return static_cast<int32_t>(static_cast<int64_t>(v + 1073741824.0) - 1073741824); }
 inline uint32_t hash_cell(int32_t x, int32_t y, uint32_t mask) {
   return (static_cast<uint32_t>(x) * 73856093u ^ static_cast<uint32_t>(y) * 19349663u) & mask;
 }
@@ -25,85 +18,87 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
   const uint32_t n = static_cast<uint32_t>(boxes.size());
   large_.clear();
   if (n < 2) return;
-  // Cell: the largest extent among ordinary boxes (extent <= 4x the mean).
+  // Cell: 4x the largest extent among ordinary boxes (extent <= 4x the mean): 1.56 cells a
+  // box on average, few boxes a cell.
   double mean = 0;
   for (const Box& b : boxes) mean += std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]);
   mean /= n;
   const double cap = 4 * mean;
-  double cell = 0;
+  double ext = 0;
   for (const Box& b : boxes) {
     const double e = std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]);
-    if (e <= cap) cell = std::max(cell, e);
+    if (e <= cap) ext = std::max(ext, e);
   }
-  cell_ = std::max(cell, 1e-3);
+  cell_ = std::max(4 * ext, 1e-3);
   const double inv = 1.0 / cell_;
   uint32_t nb = 1;
-  while (nb < 2 * n) nb <<= 1;
+  while (nb < n) nb <<= 1;  // about one bucket per box: the table stays in L1/L2
   const uint32_t mask = nb - 1;
-  bucket_of_.resize(n);
-  cx_.resize(n);
-  cy_.resize(n);
   start_.assign(nb + 1, 0);
+  is_large_.assign(n, 0);
+  bucket_.resize(4 * static_cast<size_t>(n));  // at most 2 x 2 cells a box
+  uint32_t* bucket = bucket_.data();
+  uint32_t* count = start_.data() + 1;
+  size_t nbucket = 0;
+  // Count: each ordinary box in the (at most 2 x 2) cells it overlaps.
   for (uint32_t i = 0; i < n; ++i) {
     const Box& b = boxes[i];
-    const double e = std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]);
-    if (e > cap) {
+    if (std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]) > cap) {
       large_.push_back(i);
-      bucket_of_[i] = ~0u;
+      is_large_[i] = 1;
       continue;
     }
-    cx_[i] = static_cast<int32_t>(std::floor(0.5 * (double(b.lo[0]) + b.hi[0]) * inv));
-    cy_[i] = static_cast<int32_t>(std::floor(0.5 * (double(b.lo[1]) + b.hi[1]) * inv));
-    const uint32_t h = hash_cell(cx_[i], cy_[i], mask);
-    bucket_of_[i] = h;
-    ++start_[h + 1];
+    const int32_t i0 = ifloor(b.lo[0] * inv), i1 = ifloor(b.hi[0] * inv);
+    const int32_t j0 = ifloor(b.lo[1] * inv), j1 = ifloor(b.hi[1] * inv);
+    for (int32_t y = j0; y <= j1; ++y)
+      for (int32_t x = i0; x <= i1; ++x) {
+        const uint32_t h = hash_cell(x, y, mask);
+        bucket[nbucket++] = h;
+        ++count[h];
+      }
   }
   for (uint32_t h = 0; h < nb; ++h) start_[h + 1] += start_[h];
-  const uint32_t placed = start_[nb];
-  items_.resize(placed);
-  sorted_.resize(placed);
-  // Fill in increasing id order: each bucket lists its ids ascending.
-  {
-    // reuse cx_-sized scratch: next free slot per bucket, taken from start_ (restored below)
-    for (uint32_t i = 0; i < n; ++i) {
-      const uint32_t h = bucket_of_[i];
-      if (h == ~0u) continue;
-      const uint32_t slot = start_[h]++;
-      items_[slot] = i;
-      sorted_[slot] = boxes[i];
-    }
-    for (uint32_t h = nb; h > 0; --h) start_[h] = start_[h - 1];
-    start_[0] = 0;
-  }
-  // Ordinary vs ordinary: the 3 x 3 cells around each box, distinct buckets only, j > i.
+  entries_.resize(start_[nb]);
+  // Fill (start_[h] advances to the bucket's end, then is shifted back).
+  size_t q = 0;
   for (uint32_t i = 0; i < n; ++i) {
-    if (bucket_of_[i] == ~0u) continue;
-    const Box& bi = boxes[i];
-    uint32_t seen[9];
-    int ns = 0;
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const uint32_t h = hash_cell(cx_[i] + dx, cy_[i] + dy, mask);
-        bool dup = false;
-        for (int s = 0; s < ns; ++s) dup |= seen[s] == h;
-        if (dup) continue;
-        seen[ns++] = h;
-        for (uint32_t k = start_[h]; k < start_[h + 1]; ++k) {
-          const uint32_t j = items_[k];
-          if (j <= i) continue;
-          if (overlap(bi, sorted_[k])) out.emplace_back(i, j);
-        }
+    if (is_large_[i]) continue;
+    const Box& b = boxes[i];
+    const int32_t i0 = ifloor(b.lo[0] * inv), i1 = ifloor(b.hi[0] * inv);
+    const int32_t j0 = ifloor(b.lo[1] * inv), j1 = ifloor(b.hi[1] * inv);
+    for (int32_t y = j0; y <= j1; ++y)
+      for (int32_t x = i0; x <= i1; ++x) entries_[start_[bucket[q++]]++] = Entry{b.lo[0], b.lo[1], b.hi[0], b.hi[1], x, y, i};
+  }
+  for (uint32_t h = nb; h > 0; --h) start_[h] = start_[h - 1];
+  start_[0] = 0;
+  // Pairs inside each bucket: same cell, reported in the first cell the two boxes share.
+  for (uint32_t h = 0; h < nb; ++h) {
+    const uint32_t e0 = start_[h], e1 = start_[h + 1];
+    if (e1 - e0 < 2) continue;
+    for (uint32_t a = e0; a < e1; ++a) {
+      const Entry& ea = entries_[a];
+      for (uint32_t b = a + 1; b < e1; ++b) {
+        const Entry& eb = entries_[b];
+        if (ea.lox > eb.hix || eb.lox > ea.hix || ea.loy > eb.hiy || eb.loy > ea.hiy) continue;
+        if (ea.cx != eb.cx || ea.cy != eb.cy) continue;  // another cell in this bucket
+        // Reported only in the first cell the two boxes share.
+        if (std::max(ifloor(ea.lox * inv), ifloor(eb.lox * inv)) != ea.cx ||
+            std::max(ifloor(ea.loy * inv), ifloor(eb.loy * inv)) != ea.cy)
+          continue;
+        const Box& ba = boxes[ea.id];
+        const Box& bb = boxes[eb.id];
+        if (ba.lo[2] > bb.hi[2] || bb.lo[2] > ba.hi[2]) continue;
+        out.emplace_back(std::min(ea.id, eb.id), std::max(ea.id, eb.id));
       }
+    }
   }
   // Large boxes against every box (each pair once).
   for (uint32_t l : large_) {
     for (uint32_t j = 0; j < n; ++j) {
-      if (j == l || (bucket_of_[j] == ~0u && j < l)) continue;  // large-large pairs once
+      if (j == l || (is_large_[j] && j < l)) continue;  // large-large pairs once
       if (overlap(boxes[l], boxes[j])) out.emplace_back(std::min(l, j), std::max(l, j));
     }
   }
-  // Pairs per i come out grouped by bucket; sort for a canonical order.
-  std::sort(out.begin(), out.end());
 }
 
 void brute_pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint32_t, uint32_t>>& out) {
@@ -116,6 +111,7 @@ void brute_pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint32_t, 
 void FixedGrid::build(const std::vector<Vec3>& centres, const std::vector<float>& radii, double width_m,
                       double depth_m, double cell_m) {
   cell_ = cell_m;
+  inv_ = 1.0 / cell_m;
   cols_ = std::max(1, static_cast<int>(std::ceil(width_m / cell_m)));
   rows_ = std::max(1, static_cast<int>(std::ceil(depth_m / cell_m)));
   const size_t ncell = static_cast<size_t>(cols_) * rows_;
@@ -138,6 +134,9 @@ void FixedGrid::build(const std::vector<Vec3>& centres, const std::vector<float>
   items_.resize(start_[ncell]);
   std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
   for (const Item& it : objs) each_cell(it, [&](size_t c) { items_[fill[c]++] = it; });
+  occupied_.assign((ncell + 63) / 64, 0);
+  for (size_t c = 0; c < ncell; ++c)
+    if (start_[c + 1] > start_[c]) occupied_[c >> 6] |= uint64_t{1} << (c & 63);
 }
 
 }  // namespace npsnet::collision
