@@ -1,6 +1,6 @@
 // Speed benchmark (issue 6): one step of sphere broad phase + sphere narrow phase on the default
 // world's 40,303 fixed objects with N = 500, 5,000, 50,000, 100,000 moving vehicles (half spread
-// over the 50 km map, half crowded in one 2 km square), ours vs Bullet 3.24 (btCollisionWorld +
+// over the 50 km map, half crowded in one 2 km square), ours vs Bullet 3.24 in double precision (btCollisionWorld +
 // btDbvtBroadphase, sphere shapes) vs FCL 0.7 (two DynamicAABBTreeCollisionManagers, fcl::collide
 // on spheres), side by side in one run; every vehicle moves between steps (each peer updates its
 // structure). Before timing, all three must find the same contact set at every N (else exit 1).
@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <random>
 
@@ -114,9 +115,9 @@ struct Ours {
     for (uint32_t i = 0; i < n; ++i) {
       const Vec3 ci = c[i];
       const double ri = s.mr[i];
-      fixed.query(boxes[i], [&](uint32_t o, const collision::FixedGrid::Item& it) {
-        const double rr = ri + it.r;
-        if ((Vec3(it.x, it.y, it.z) - ci).squaredNorm() < rr * rr) out.emplace_back(i, n + o);
+      fixed.query(boxes[i], [&](uint32_t o, const collision::FixedGrid::Item&) {
+        const double rr = ri + s.fr[o];
+        if ((s.fc[o] - ci).squaredNorm() < rr * rr) out.emplace_back(i, n + o);  // double, as the peers
       });
     }
   }
@@ -266,6 +267,19 @@ Peers& peers(int n) {
   std::sort(c.begin(), c.end());
   if (a != b || a != c) {
     std::fprintf(stderr, "N=%d: contact sets differ: ours %zu, Bullet %zu, FCL %zu\n", n, a.size(), b.size(), c.size());
+    for (const auto* other : {&b, &c}) {
+      std::vector<Pair> d;
+      std::set_symmetric_difference(a.begin(), a.end(), other->begin(), other->end(), std::back_inserter(d));
+      for (size_t k = 0; k < d.size() && k < 6; ++k) {
+        const Pair& p = d[k];
+        const Vec3 ci = s.mc[p.first];
+        const bool fx = p.second >= static_cast<uint32_t>(n);
+        const Vec3 cj = fx ? s.fc[p.second - n] : s.mc[p.second];
+        const double rr = double(s.mr[p.first]) + (fx ? s.fr[p.second - n] : s.mr[p.second]);
+        std::fprintf(stderr, "  %s: (%u, %u%s) distance - radii = %.3g m\n", other == &b ? "Bullet" : "FCL", p.first,
+                     fx ? p.second - n : p.second, fx ? " fixed" : "", (ci - cj).norm() - rr);
+      }
+    }
     std::exit(1);
   }
   std::fprintf(stderr, "N=%d: ours, Bullet and FCL agree on %zu contacts\n", n, a.size());

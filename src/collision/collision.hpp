@@ -84,11 +84,18 @@ class Detector {
   void detect(const world::World& w, std::vector<Contact>& out);
   const DetectStats& stats() const { return stats_; }
   const Options& options() const { return opt_; }
+  // A new tick length (s; positive and finite, else std::invalid_argument).
+  void set_dt(double dt_s);
+  // One pair of entities by this detector's method and tier, outside the episode bookkeeping
+  // (benchmarks and tests): true with the contact (continuous: the first in the tick).
+  bool test_pair(const world::World& w, int a, int b, Contact& k);
 
  private:
   void detect_thesis(const world::World& w);
   void detect_continuous(const world::World& w);
   void prepare_shapes(const world::World& w);
+  bool moving_pair(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa, double rba,
+                   const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, Contact& k);
   // Narrow phase of one moving pair (entities a, b) beyond the sweep: true with a contact.
   // Sweeps the posed shapes from the first touch of the bounding spheres ([t_in, t_out]) up to
   // `tier`, cheapest first; true with the time, point and normal of the first contact.

@@ -125,6 +125,65 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
   return true;
 }
 
+bool Detector::moving_pair(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa,
+                           double rba, const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, Contact& k) {
+  const auto& ents = w.ents;
+  const bool mun = is_munition(w, a) || is_munition(w, b);
+  const Tier tier = mun ? Tier::Sphere
+                        : opt_.tier != Tier::Auto ? opt_.tier
+                                                  : std::min(top_tier(w.kinds[ents.kind[a]]), top_tier(w.kinds[ents.kind[b]]));
+  const bool sphere = tier == Tier::Sphere;
+  ++stats_.sweep_pairs;
+  const SweepHit h = sphere_sweep(c0a, c1a, sphere ? rsa : rba, c0b, c1b, sphere ? rsb : rbb);
+  if (!h.hit) {
+    ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];
+    return false;
+  }
+  ++stats_.sweep_hits;
+  k.a = a, k.b = b, k.b_fixed = false, k.dt_s = opt_.dt_s;
+  if (sphere) {
+    ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];
+    k.point = h.point, k.normal = h.normal, k.toi = h.t, k.method = method_of(Tier::Sphere, false);
+    if (mun) k.method = "continuous-munition";
+    return true;
+  }
+  return narrow(w, a, b, false, tier, h.t, h.t_exit, k);
+}
+
+bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
+  const auto& ents = w.ents;
+  for (int e : {a, b})
+    if (!finite3(ents.pos[e]) || !finite3(ents.vel[e]) || !std::isfinite(ents.heading_deg[e]) ||
+        !std::isfinite(ents.pitch_deg[e]) || !std::isfinite(ents.roll_deg[e]))
+      throw std::invalid_argument("collision: entity '" + ents.id[e] +
+                                  "': position, velocity or orientation is not finite (NaN or infinite)");
+  if (opt_.method == Method::Thesis) {
+    // L2 then L3 at the end of the tick, as detect_thesis.
+    const Vec3 ca = world::entity_centre(w, a), cb = world::entity_centre(w, b);
+    const double rr = world::entity_radius(w, a) + world::entity_radius(w, b);
+    if ((cb - ca).squaredNorm() >= rr * rr) return false;
+    Vec3 p;
+    if (!l3_real(w, a, b, p) && !l3_real(w, b, a, p)) return false;
+    k.a = a, k.b = b, k.point = p, k.toi = 1, k.dt_s = 0, k.method = "L3-haines";
+    const Vec3 d = cb - ca;
+    k.normal = d.norm() > 1e-9 ? Vec3(d.normalized()) : Vec3::UnitX();
+    return true;
+  }
+  prepare_shapes(w);
+  Vec3 c0[2], c1[2];
+  double rs[2], rb[2];
+  for (int s = 0; s < 2; ++s) {
+    const int e = s ? b : a;
+    c1[s] = world::entity_centre(w, e);
+    c0[s] = c1[s] - ents.vel[e] * opt_.dt_s;
+    rs[s] = world::entity_radius(w, e);
+    const Tier top = opt_.tier != Tier::Auto ? opt_.tier : top_tier(w.kinds[ents.kind[e]]);
+    const Shape& sh = shapes_[w.kinds[ents.kind[e]].models[ents.state[e]]];
+    rb[s] = top == Tier::Sphere ? rs[s] : std::max(rs[s], sh.bound_radius * 1.0001 + 1e-3);
+  }
+  return moving_pair(w, a, b, c0[0], c1[0], rs[0], rb[0], c0[1], c1[1], rs[1], rb[1], k);
+}
+
 void Detector::detect_continuous(const world::World& w) {
   prepare_shapes(w);
   const auto& ents = w.ents;
@@ -213,28 +272,10 @@ void Detector::detect_continuous(const world::World& w) {
     if (is_munition(w, a) && is_munition(w, b)) continue;
     // Canonical order by id, so that the answer does not depend on where entities are stored.
     if (ents.id[b] < ents.id[a]) std::swap(a, b), std::swap(ia, ib);
-    const bool mun = is_munition(w, a) || is_munition(w, b);
-    const Tier tier = mun ? Tier::Sphere
-                          : opt_.tier != Tier::Auto ? opt_.tier
-                                                    : std::min(top_tier(w.kinds[ents.kind[a]]), top_tier(w.kinds[ents.kind[b]]));
-    const bool sphere = tier == Tier::Sphere;
-    ++stats_.sweep_pairs;
-    const SweepHit h = sphere_sweep(c0_[ia], c1_[ia], sphere ? r_sphere_[ia] : r_bound_[ia], c0_[ib], c1_[ib],
-                                    sphere ? r_sphere_[ib] : r_bound_[ib]);
-    if (!h.hit) {
-      ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];
-      continue;
-    }
-    ++stats_.sweep_hits;
     Contact k;
-    k.a = a, k.b = b, k.dt_s = dt;
-    if (sphere) {
-      ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];
-      k.point = h.point, k.normal = h.normal, k.toi = h.t, k.method = method_of(Tier::Sphere, false);
-      if (mun) k.method = "continuous-munition";
-    } else if (!narrow(w, a, b, false, tier, h.t, h.t_exit, k)) {
+    if (!moving_pair(w, a, b, c0_[ia], c1_[ia], r_sphere_[ia], r_bound_[ia], c0_[ib], c1_[ib], r_sphere_[ib],
+                     r_bound_[ib], k))
       continue;
-    }
     touching_.push_back(contact_key(a, b, false));
     candidates_.push_back(k);
   }

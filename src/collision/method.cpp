@@ -40,6 +40,11 @@ Tier top_tier(const world::Kind& k) {
   return Tier::Mesh;
 }
 
+void Detector::set_dt(double dt_s) {
+  if (!(dt_s > 0) || !std::isfinite(dt_s)) throw std::invalid_argument("collision: dt must be a positive finite number of seconds");
+  opt_.dt_s = dt_s;
+}
+
 Options options_from(const std::string& method, const std::string& tier, double dt_s) {
   if (!(dt_s > 0) || !std::isfinite(dt_s)) throw std::invalid_argument("collision: dt must be a positive finite number of seconds");
   return Options{parse_method(method), parse_tier(tier), dt_s};
