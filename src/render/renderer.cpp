@@ -250,20 +250,9 @@ void Renderer::Impl::draw_scene(const SceneView& v, const ViewMath& vm) {
     gl::Uniform3f(pr.loc("u_fog_color"), kSkyHorizon[0], kSkyHorizon[1], kSkyHorizon[2]);
   };
 
-  // sky
-  gl::Disable(GL_DEPTH_TEST);
-  gl::DepthMask(GL_FALSE);
-  sky_prog->use();
-  const Mat4f inv = vm.vp.inverse();
-  gl::UniformMatrix4fv(sky_prog->loc("u_inv_vp"), 1, GL_FALSE, inv.data());
-  gl::Uniform3f(sky_prog->loc("u_horizon"), kSkyHorizon[0], kSkyHorizon[1], kSkyHorizon[2]);
-  gl::Uniform3f(sky_prog->loc("u_zenith"), kSkyZenith[0], kSkyZenith[1], kSkyZenith[2]);
-  gl::BindVertexArray(empty_vao);
-  gl::DrawArrays(GL_TRIANGLES, 0, 3);
   gl::Enable(GL_DEPTH_TEST);
   gl::DepthFunc(GL_LEQUAL);
   gl::DepthMask(GL_TRUE);
-  gl::Clear(GL_DEPTH_BUFFER_BIT);
 
   // terrain
   common(*terrain_prog);
@@ -336,6 +325,17 @@ void Renderer::Impl::draw_scene(const SceneView& v, const ViewMath& vm) {
   stats.objects_simple = os.instances_simple;
   stats.object_triangles = os.triangles;
   gl::Disable(GL_CULL_FACE);
+
+  // sky: where nothing opaque was drawn (depth still 1)
+  gl::DepthMask(GL_FALSE);
+  sky_prog->use();
+  const Mat4f inv = vm.vp.inverse();
+  gl::UniformMatrix4fv(sky_prog->loc("u_inv_vp"), 1, GL_FALSE, inv.data());
+  gl::Uniform3f(sky_prog->loc("u_horizon"), kSkyHorizon[0], kSkyHorizon[1], kSkyHorizon[2]);
+  gl::Uniform3f(sky_prog->loc("u_zenith"), kSkyZenith[0], kSkyZenith[1], kSkyZenith[2]);
+  gl::BindVertexArray(empty_vao);
+  gl::DrawArrays(GL_TRIANGLES, 0, 3);
+  gl::DepthMask(GL_TRUE);
 
   // water
   gl::Enable(GL_BLEND);

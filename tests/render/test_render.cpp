@@ -208,15 +208,15 @@ TEST(Render, MissingOrBrokenShaderNamesFileAndLine) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find((dir / "object.frag").string()), std::string::npos) << e.what();
   }
-  // a compile error on line 7 of terrain.frag
+  // a compile error on line 7 of terrain.vert
   fs::copy_file(kSrc / "shaders/object.frag", dir / "object.frag");
   {
-    std::ifstream in(kSrc / "shaders/terrain.frag");
+    std::ifstream in(kSrc / "shaders/terrain.vert");
     std::vector<std::string> lines;
     for (std::string l; std::getline(in, l);) lines.push_back(l);
     ASSERT_GT(lines.size(), 8u);
     lines.insert(lines.begin() + 6, "this is not GLSL;");
-    std::ofstream out(dir / "terrain.frag", std::ios::trunc);
+    std::ofstream out(dir / "terrain.vert", std::ios::trunc);
     for (const auto& l : lines) out << l << "\n";
   }
   try {
@@ -225,7 +225,7 @@ TEST(Render, MissingOrBrokenShaderNamesFileAndLine) {
     render::Renderer bad(o, w);
     FAIL() << "a shader compile error was not reported";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find((dir / "terrain.frag").string() + ":7:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find((dir / "terrain.vert").string() + ":7:"), std::string::npos) << e.what();
   }
 }
 

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <string>
 
 #include "render/renderer.hpp"
@@ -16,31 +17,42 @@ using namespace npsnet;
 
 namespace {
 
+// Row k of the gallery: y of the row and x spacing of its states (rows far enough apart that a
+// close-up of one row shows little of the next).
+struct Row {
+  double y, step;
+};
+std::vector<Row> gallery_rows(const world::World& w) {
+  std::vector<Row> rows;
+  double y = 30;
+  for (int k = 0; k < w.kinds.size(); ++k) {
+    const double r = std::max(3.0, w.kinds[k].radius_m);
+    if (k > 0) y += 2.5 * std::max(r, std::max(3.0, w.kinds[k - 1].radius_m)) + 25;
+    rows.push_back({y, std::max(12.0, r * 2.6)});
+  }
+  return rows;
+}
+
 world::World gallery_world(const std::filesystem::path& kinds_file) {
   world::World w;
-  const int n = 161;
+  w.kinds = world::KindTable::load(kinds_file, w.models);
+  const auto rows = gallery_rows(w);
+  const int n = static_cast<int>(rows.back().y / 2.0) + 40;
   std::vector<float> h(static_cast<size_t>(n * n), 100.0f);
   w.terrain = world::Terrain(n, n, 2.0, h, geo::Geodetic{35.98, -121.25, 0.0});
-  w.kinds = world::KindTable::load(kinds_file, w.models);
-  // one row per kind, one column per state; vehicles are entities
-  double y = 20;
+  // one row per kind, one column per state; vehicles and munitions are entities
   for (int k = 0; k < w.kinds.size(); ++k) {
     const auto& kind = w.kinds[k];
-    double x = 20;
-    const double step = std::max(12.0, kind.radius_m * 2.6);
     for (size_t s = 0; s < kind.states.size(); ++s) {
-      const Vec3 p(x, y, 100.0);
+      const Vec3 p(30 + rows[static_cast<size_t>(k)].step * static_cast<double>(s), rows[static_cast<size_t>(k)].y, 100.0);
       if (kind.mobile()) {
         const int e = w.ents.add(kind.name + "_" + std::to_string(s), k, p, 30.0f, static_cast<float>(kind.radius_m));
         w.ents.state[static_cast<size_t>(e)] = static_cast<uint8_t>(s);
-        if (kind.mobility == world::Mobility::Air && s == 0) w.ents.pos[static_cast<size_t>(e)].z() += 6;
       } else {
         w.fixed.add(kind.name + "_" + std::to_string(s), k, p, 30.0f, static_cast<float>(kind.radius_m));
         w.fixed.state.back() = static_cast<uint8_t>(s);
       }
-      x += step;
     }
-    y += std::max(12.0, kind.radius_m * 2.4);
   }
   return w;
 }
@@ -95,22 +107,22 @@ int main(int argc, char** argv) {
       render::Renderer r(opt, w);
       std::printf("%s\n", r.gl_description().c_str());
       render::SceneView v{&w, nullptr, nullptr, 0.0, -1};
-      // one close-up per kind row, plus an overview
-      double y = 20;
+      // one close-up per kind row
+      const auto rows = gallery_rows(w);
       for (int k = 0; k < w.kinds.size(); ++k) {
         const auto& kind = w.kinds[k];
-        const double step = std::max(12.0, kind.radius_m * 2.6);
-        const double span = step * (kind.states.size() - 1);
-        const Vec3 a(20, y, 100 + kind.height_m * 0.4), b(20 + span, y, 100 + kind.height_m * 0.4);
+        const auto& row = rows[static_cast<size_t>(k)];
+        const double span = row.step * static_cast<double>(kind.states.size() - 1);
+        const double zt = 100 + std::max(0.5, kind.height_m) * 0.4;
+        const Vec3 a(30, row.y, zt), b(30 + span, row.y, zt);
         render::Camera c;
-        const double dist = std::max(18.0, span * 0.75 + kind.radius_m * 3.2);
+        const double dist = std::max(4.0, span * 0.8 + std::max(1.0, kind.radius_m) * 3.0);
         c.target = 0.5 * (a + b);
-        c.eye = c.target + Vec3(-0.35 * dist, -dist, 0.45 * dist);
+        c.eye = c.target + Vec3(-0.3 * dist, -dist, 0.45 * dist);
         r.render(v, c, {}, false);
         const auto f = out / ("gallery-" + kind.name + ".png");
         if (!r.write_png(f)) throw std::runtime_error("cannot write " + f.string());
         std::printf("wrote %s (%zu states)\n", f.string().c_str(), kind.states.size());
-        y += std::max(12.0, kind.radius_m * 2.4);
       }
       return 0;
     }
@@ -181,7 +193,25 @@ int main(int argc, char** argv) {
       std::snprintf(name, sizeof name, "view-explosion-t%.1f.png", t);
       r.write_png(out / name);
     }
-    // 4. overview from high above the proving ground
+    // 4. from a ground vehicle's eye in the densest 2 km square of fixed objects, four directions
+    {
+      std::map<std::pair<int, int>, int> cells;
+      for (const auto& p : w.fixed.pos) ++cells[{static_cast<int>(p.x() / 2000), static_cast<int>(p.y() / 2000)}];
+      auto best = cells.begin();
+      for (auto it = cells.begin(); it != cells.end(); ++it)
+        if (it->second > best->second) best = it;
+      Vec3 p(best->first.first * 2000.0 + 1000, best->first.second * 2000.0 + 1000, 0);
+      p.z() = w.terrain.height(p.x(), p.y());
+      for (int hdg : {0, 90, 180, 270}) {
+        r.render(v, render::vehicle_eye(p, hdg, -2.0, 3.0), hud, true);
+        const auto st = r.stats();
+        std::printf("forest view (%.0f, %.0f) heading %d: %lld full + %lld simplified objects, %lld terrain triangles\n",
+                    p.x(), p.y(), hdg, static_cast<long long>(st.objects_full), static_cast<long long>(st.objects_simple),
+                    static_cast<long long>(st.terrain_triangles));
+        r.write_png(out / ("view-forest-" + std::to_string(hdg) + ".png"));
+      }
+    }
+    // 5. overview from high above the proving ground
     render::Camera high;
     high.eye = w.ents.pos[0] + Vec3(-3000, -4000, 2500);
     high.target = w.ents.pos[0] + Vec3(2000, 2000, 0);
