@@ -506,14 +506,19 @@ def building_parts(rng, level):
     if level <= 1:
         parts.append(box((0, 0, H / 2), (W, D, H), "wall"))
         # gabled roof, ridge along x
-        roof = extrude_yz([(-D / 2 - 0.4, H), (D / 2 + 0.4, H), (0, R)], -W / 2 - 0.2, W / 2 + 0.2, "wall",
-                          side_mats=["roof", "roof", "roof"])
-        roof.f = [(i, "roof") if k < 3 else (i, "wall") for k, (i, m) in enumerate(roof.f)]
-        if level == 1:
-            # a slice of roof blown off: lower the front-right part, add a hole look with charred faces
-            roof.jitter(rng, 0.08)
-            char_mix(rng, [roof], frac=0.25)
-        parts.append(roof)
+        prof = [(-D / 2 - 0.4, H), (D / 2 + 0.4, H), (0, R)]
+        if level == 0:
+            roof = extrude_yz(prof, -W / 2 - 0.2, W / 2 + 0.2, "wall")
+            roof.f = [(i, "roof") if k < 3 else (i, "wall") for k, (i, m) in enumerate(roof.f)]
+            parts.append(roof)
+        else:
+            # the roof's east half has caved in: it sags into the house, burnt
+            left = extrude_yz(prof, -W / 2 - 0.2, -0.3, "wall")
+            left.f = [(i, "roof") if k < 3 else (i, "wall") for k, (i, m) in enumerate(left.f)]
+            right = extrude_yz(prof, 0.3, W / 2 + 0.2, "roof")
+            right.rotate(rot_y(16), (0.3, 0, H)).move((0, 0, -0.4))
+            char_mix(rng, [right], frac=0.55)
+            parts += [left, right]
         win = "window" if level == 0 else "slit"
         for x in (-3.8, -0.5, 3.8):  # front (+y) and back windows
             parts.append(box((x, D / 2 + 0.04, 2.6), (1.4, 0.12, 1.2), win))
@@ -835,7 +840,7 @@ def f16_wreck(rng):
     parts[2].rotate(rot_z(30), (0, -6, 0.4)).move((1.5, -1.0, 0))
     parts[3].rotate(rot_y(70), (0, -6, 0.6)).move((2.5, -0.5, -0.1))
     parts.append(box((-3.0, -9.0, 0.3), (1.2, 2.0, 0.6), "charred").rotate(rot_z(20), (-3, -9, 0)))
-    return wreck("f16_wreck", parts, rng, sink=0.0, jit=0.06, frac=0.6)
+    return wreck("f16_wreck", parts, rng, sink=0.0, jit=0.06, frac=0.8)
 
 
 def ah64_parts():
