@@ -27,6 +27,7 @@ constexpr double kEntityLodBoost = 3.0;    // vehicles keep detail farther than 
 constexpr float kSkyHorizon[3] = {0.74f, 0.80f, 0.86f};
 constexpr float kSkyZenith[3] = {0.33f, 0.53f, 0.82f};
 constexpr int kMinOverlayW = 64, kMinOverlayH = 48;
+constexpr double kWaterCellM = 200.0;      // water grid cell (haze is computed per vertex)
 
 void check_gl(const char* where) {
   const GLenum e = gl::GetError();
@@ -55,6 +56,7 @@ struct Renderer::Impl {
   Effects effects;
   FrameStats stats;
   bool have_water = false;
+  int water_vertices = 0;
   float hmin = 0, hmax = 1;
 
   // fixed-object blocks (CSR), bounds per block, radius per model
@@ -168,17 +170,38 @@ Renderer::Renderer(const RenderOptions& opt, const world::World& world) : p_(std
   p.build_blocks();
 
   gl::GenVertexArrays(1, &p.empty_vao);
-  // water plane over the whole map
+  // water: a grid over the posts below the water level (fine enough for per-vertex haze)
   p.have_water = world.water_level_m > p.hmin;
   {
-    const auto W = static_cast<float>(world.terrain.width_m()), D = static_cast<float>(world.terrain.depth_m());
-    const auto z = static_cast<float>(std::clamp(world.water_level_m, -1e6, 1e6));
-    const TerrainVertex q[4] = {{0, 0, z, 0, 0, 1, 0}, {W, 0, z, 0, 0, 1, 0}, {0, D, z, 0, 0, 1, 0}, {W, D, z, 0, 0, 1, 0}};
+    const auto& t = world.terrain;
+    int i0 = t.cols(), i1 = -1, j0 = t.rows(), j1 = -1;
+    for (int j = 0; j < t.rows(); ++j)
+      for (int i = 0; i < t.cols(); ++i)
+        if (t.post(i, j) < world.water_level_m) i0 = std::min(i0, i), i1 = std::max(i1, i), j0 = std::min(j0, j), j1 = std::max(j1, j);
+    std::vector<TerrainVertex> grid;
+    if (p.have_water && i1 >= i0) {
+      const double s = t.spacing_m();
+      const double x0 = std::max(0, i0 - 1) * s, x1 = std::min(t.cols() - 1, i1 + 1) * s;
+      const double y0 = std::max(0, j0 - 1) * s, y1 = std::min(t.rows() - 1, j1 + 1) * s;
+      const int nx = std::clamp(static_cast<int>((x1 - x0) / kWaterCellM) + 1, 1, 256);
+      const int ny = std::clamp(static_cast<int>((y1 - y0) / kWaterCellM) + 1, 1, 256);
+      const auto z = static_cast<float>(world.water_level_m);
+      const auto vtx = [&](int a, int b) {
+        return TerrainVertex{static_cast<float>(x0 + (x1 - x0) * a / nx), static_cast<float>(y0 + (y1 - y0) * b / ny), z,
+                             0, 0, 1, 0};
+      };
+      for (int b = 0; b < ny; ++b)
+        for (int a = 0; a < nx; ++a)
+          for (const auto& [da, db] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}}) grid.push_back(vtx(a + da, b + db));
+    }
+    p.have_water = !grid.empty();
+    p.water_vertices = static_cast<int>(grid.size());
     gl::GenVertexArrays(1, &p.water_vao);
     gl::BindVertexArray(p.water_vao);
     gl::GenBuffers(1, &p.water_vbo);
     gl::BindBuffer(GL_ARRAY_BUFFER, p.water_vbo);
-    gl::BufferData(GL_ARRAY_BUFFER, sizeof q, q, GL_STATIC_DRAW);
+    gl::BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(std::max<size_t>(1, grid.size()) * sizeof(TerrainVertex)),
+                   grid.empty() ? nullptr : grid.data(), GL_STATIC_DRAW);
     const auto st = static_cast<GLsizei>(sizeof(TerrainVertex));
     gl::EnableVertexAttribArray(0);
     gl::VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, st, reinterpret_cast<void*>(0));
@@ -344,7 +367,7 @@ void Renderer::Impl::draw_scene(const SceneView& v, const ViewMath& vm) {
     common(*terrain_prog);
     gl::Uniform1i(terrain_prog->loc("u_water"), 1);
     gl::BindVertexArray(water_vao);
-    gl::DrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    gl::DrawArrays(GL_TRIANGLES, 0, water_vertices);
   }
 
   // particles: premultiplied alpha, no depth writes

@@ -363,3 +363,21 @@ TEST(Render, GlslLogLineAndFont) {
   const auto atlas = render::font::atlas();
   EXPECT_EQ(atlas.size(), static_cast<size_t>(render::font::kAtlasW * render::font::kAtlasH));
 }
+
+TEST(Render, WaterDrawnAtItsLevel) {
+  world::World w = flat_world(50.0f);
+  // a pond: posts in the middle 40 x 40 are 5 m below the ground and 3 m below the water level
+  for (int j = 44; j < 84; ++j)
+    for (int i = 44; i < 84; ++i) const_cast<float&>(w.terrain.posts()[static_cast<size_t>(j * 129 + i)]) = 45.0f;
+  w.water_level_m = 48.0;
+  auto o = options(120, 90);
+  render::Renderer r(o, w);
+  // straight down onto the pond, then onto dry ground
+  const auto colour_below = [&](double x, double y) {
+    r.render({&w, nullptr, nullptr, 0, -1}, {Vec3(x, y - 0.01, 120), Vec3(x, y, 50), 20}, {}, false);
+    return at(r.pixels(), 120, 60, 45);
+  };
+  const Rgb pond = colour_below(128, 128), dry = colour_below(30, 30);
+  EXPECT_GT(pond.b, pond.r + 40) << "water is blue: " << pond.r << " " << pond.g << " " << pond.b;
+  EXPECT_GT(dry.g, dry.b) << "ground is not";
+}

@@ -211,7 +211,37 @@ int main(int argc, char** argv) {
         r.write_png(out / ("view-forest-" + std::to_string(hdg) + ".png"));
       }
     }
-    // 5. overview from high above the proving ground
+    // 5. the highest hill from 4 km, and the lake (water level) from its shore
+    {
+      int bi = 0, bj = 0;
+      for (int j = 0; j < w.terrain.rows(); ++j)
+        for (int i = 0; i < w.terrain.cols(); ++i)
+          if (w.terrain.post(i, j) > w.terrain.post(bi, bj)) bi = i, bj = j;
+      const Vec3 top(bi * w.terrain.spacing_m(), bj * w.terrain.spacing_m(), w.terrain.post(bi, bj));
+      render::Camera c;
+      const Vec3 from = top + Vec3(-2800, -2800, 0);
+      c.eye = Vec3(from.x(), from.y(), std::max(from.z(), w.terrain.height(from.x(), from.y())) + 150);
+      c.target = top;
+      r.render(v, c, hud, true);
+      r.write_png(out / "view-hill.png");
+      std::printf("hill top (%.0f, %.0f) %.0f m\n", top.x(), top.y(), top.z());
+      if (w.water_level_m > -1e8) {
+        // the lowest post is in the lake: look at it from 1.5 km south, 40 m up
+        int li = 0, lj = 0;
+        for (int j = 0; j < w.terrain.rows(); ++j)
+          for (int i = 0; i < w.terrain.cols(); ++i)
+            if (w.terrain.post(i, j) < w.terrain.post(li, lj)) li = i, lj = j;
+        const Vec3 low(li * w.terrain.spacing_m(), lj * w.terrain.spacing_m(), w.water_level_m);
+        c.eye = low + Vec3(0, -1500, 0);
+        c.eye.z() = std::max(w.water_level_m, w.terrain.height(c.eye.x(), c.eye.y())) + 40;
+        c.target = low;
+        r.render(v, c, hud, true);
+        r.write_png(out / "view-lake.png");
+        std::printf("lake bottom (%.0f, %.0f) %.0f m, water at %.0f m\n", low.x(), low.y(),
+                    static_cast<double>(w.terrain.post(li, lj)), w.water_level_m);
+      }
+    }
+    // 6. overview from high above the proving ground
     render::Camera high;
     high.eye = w.ents.pos[0] + Vec3(-3000, -4000, 2500);
     high.target = w.ents.pos[0] + Vec3(2000, 2000, 0);
