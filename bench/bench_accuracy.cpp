@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <random>
 #include <string>
@@ -209,7 +210,13 @@ int main(int argc, char** argv) {
       s.hits += hit;
       if (tr.hit) {
         ++s.truth_hits;
-        if (!hit) ++s.misses;
+        if (!hit) {
+          ++s.misses;
+          if (std::getenv("NPSNET_ACC_DEBUG") && m == nm - 1)
+            std::fprintf(stderr, "miss %s: truth t %.4f inside %d speed %.1f dt %.3f kinds %s %s offset %.2f reach %.2f\n",
+                         s.name.c_str(), tr.t, tr.started_inside, speed, dt, w.kinds[ka].name.c_str(),
+                         w.kinds[kb].name.c_str(), offset, reach);
+        }
         else if (!tr.started_inside) {
           s.point_err.push_back((k.point - tr.point).norm());
           s.time_err.push_back(std::abs(k.toi - tr.t) * speed * dt);

@@ -16,6 +16,8 @@
 //    up the pair's shape tiers (sphere -> oriented box -> convex hull -> polygon mesh, shapes.hpp)
 //    only while the cheaper tier cannot decide;
 //  contacts are sorted by (time of impact, entity ids) and resolved together (respond()).
+//  A contact episode, once begun, goes on while the pair's bounding spheres (the model's bound
+//  above the sphere tier) still meet in the tick; only then may a new episode begin.
 //
 // Both: response as Figure 8 (p. 22) with the constants of core/constants.hpp; detect() reports
 // only the first tick of each contact episode and reuses its buffers (no allocation per tick
@@ -94,8 +96,9 @@ class Detector {
   void detect_thesis(const world::World& w);
   void detect_continuous(const world::World& w);
   void prepare_shapes(const world::World& w);
+  // `continuing`: the pair touched last tick; its episode goes on while its bound spheres meet.
   bool moving_pair(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa, double rba,
-                   const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, Contact& k);
+                   const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, bool continuing, Contact& k);
   // Narrow phase of one moving pair (entities a, b) beyond the sweep: true with a contact.
   // Sweeps the posed shapes from the first touch of the bounding spheres ([t_in, t_out]) up to
   // `tier`, cheapest first; true with the time, point and normal of the first contact.

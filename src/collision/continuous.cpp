@@ -24,11 +24,13 @@ const char* method_of(Tier t, bool fixed) {
   }
 }
 
-// Relative motion per sample of the shape sweep: a quarter of the thinner body's smallest half
-// extent, so no body passes a face between two samples; at most kMaxSamples samples a pair.
-constexpr double kSampleFraction = 0.25;
-constexpr int kMaxSamples = 256;
-constexpr int kBisections = 16;
+// The shape sweep is tested over intervals of relative motion of about the thinner body's
+// smallest half extent (each interval exactly, by swept GJK: a thin part cannot slip between
+// two samples), at most kMaxSamples a pair; the first interval that touches is halved
+// kBisections times (the time of impact to 2^-20 of the interval).
+constexpr double kSampleFraction = 1.0;
+constexpr int kMaxSamples = 64;
+constexpr int kBisections = 20;
 
 }  // namespace
 
@@ -64,41 +66,40 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
     pa.rot = ra, pa.pos = pa_end - va * (1 - t);
     pb.rot = rb, pb.pos = pb_end - vb * (1 - t);
   };
-  // The cheapest tier that decides: a box apart decides "no"; the pair's tier decides "yes".
-  auto touching = [&](double t) {
+  // Do the shapes touch at some time in [t0, t1]? b sweeps relative to a; the cheapest tier
+  // that decides: a box apart decides "no", the pair's tier decides "yes" (each sweep exact).
+  auto touching = [&](double t0, double t1) {
     Pose pa, pb;
-    poses(t, pa, pb);
-    if (!box_overlap(sa, pa, sb, pb)) {
+    poses(t0, pa, pb);
+    const Vec3 d = (vb - va) * (t1 - t0);
+    if (!box_overlap_swept(sa, pa, sb, pb, d)) {
       ++stats_.tier_decided[static_cast<int>(Tier::Box)];
       return false;
     }
     if (tier == Tier::Box) return ++stats_.tier_decided[static_cast<int>(Tier::Box)], true;
-    const bool hull = hull_overlap(sa, pa, sb, pb);
+    const bool hull = hull_overlap_swept(sa, pa, sb, pb, d);
     if (!hull || tier == Tier::Hull) return ++stats_.tier_decided[static_cast<int>(Tier::Hull)], hull;
     ++stats_.tier_decided[static_cast<int>(Tier::Mesh)];
-    return mesh_overlap(sa, pa, sb, pb, scratch_);
+    return mesh_overlap_swept(sa, pa, sb, pb, d, scratch_);
   };
   const double rel = (va - vb).norm();
   const double step = kSampleFraction * std::max(1e-3, std::min(sa.min_half, sb.min_half));
-  int n = rel > 0 ? static_cast<int>(std::ceil(rel * (t_out - t_in) / step)) : 0;
-  n = std::clamp(n, 0, kMaxSamples);
+  int n = rel > 0 ? static_cast<int>(std::ceil(rel * (t_out - t_in) / step)) : 1;
+  n = std::clamp(n, 1, kMaxSamples);
   double lo = t_in, hi = -1;
-  if (touching(t_in)) {
-    hi = t_in;
-  } else {
-    for (int s = 1; s <= n; ++s) {
-      const double t = t_in + (t_out - t_in) * s / n;
-      if (touching(t)) {
-        hi = t;
-        break;
-      }
-      lo = t;
+  for (int s = 1; s <= n; ++s) {
+    const double t = t_in + (t_out - t_in) * s / n;
+    if (touching(lo, t)) {
+      hi = t;
+      break;
     }
-    if (hi < 0) return false;
-    for (int i = 0; i < kBisections; ++i) {
-      const double m = 0.5 * (lo + hi);
-      (touching(m) ? hi : lo) = m;
-    }
+    lo = t;
+  }
+  if (hi < 0) return false;
+  // No touch in [t_in, lo); a touch in [lo, hi]: halve down to the first.
+  for (int i = 0; i < kBisections && hi > lo; ++i) {
+    const double m = 0.5 * (lo + hi);
+    (touching(lo, m) ? hi : lo) = m;
   }
   Pose pa, pb;
   poses(hi, pa, pb);
@@ -106,8 +107,17 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
   const Vec3 d = cb - ca;
   k.normal = d.norm() > 1e-9 ? Vec3(d.normalized()) : (rel > 0 ? Vec3((vb - va).normalized()) : Vec3::UnitX());
   Vec3 p;
-  if (mesh_overlap(sa, pa, sb, pb, scratch_, &p)) {
-    k.point = p;  // on the meeting triangles' intersection
+  // On the meeting triangles' intersection: at hi, or a few millimetres of travel later when
+  // the surfaces only touch there.
+  bool met = false;
+  for (int i = 0; i < 8 && !met; ++i) {
+    const double t = std::min(1.0, hi + i * 0.002 / std::max(rel, 1e-9));
+    Pose qa, qb;
+    poses(t, qa, qb);
+    met = mesh_overlap(sa, qa, sb, qb, scratch_, &p);
+  }
+  if (met) {
+    k.point = p;
   } else {
     // Box or hull contact without the surfaces meeting: the ray from each centre to the other
     // (thesis L3's first ray, Haines on the polygon), midway between the two surface points.
@@ -126,7 +136,8 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
 }
 
 bool Detector::moving_pair(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa,
-                           double rba, const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, Contact& k) {
+                           double rba, const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, bool continuing,
+                           Contact& k) {
   const auto& ents = w.ents;
   const bool mun = is_munition(w, a) || is_munition(w, b);
   const Tier tier = mun ? Tier::Sphere
@@ -141,7 +152,7 @@ bool Detector::moving_pair(const world::World& w, int a, int b, const Vec3& c0a,
   }
   ++stats_.sweep_hits;
   k.a = a, k.b = b, k.b_fixed = false, k.dt_s = opt_.dt_s;
-  if (sphere) {
+  if (sphere || continuing) {  // a continuing episode needs no more than its bound
     ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];
     k.point = h.point, k.normal = h.normal, k.toi = h.t, k.method = method_of(Tier::Sphere, false);
     if (mun) k.method = "continuous-munition";
@@ -181,7 +192,7 @@ bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
     const Shape& sh = shapes_[w.kinds[ents.kind[e]].models[ents.state[e]]];
     rb[s] = top == Tier::Sphere ? rs[s] : std::max(rs[s], sh.bound_radius * 1.0001 + 1e-3);
   }
-  return moving_pair(w, a, b, c0[0], c1[0], rs[0], rb[0], c0[1], c1[1], rs[1], rb[1], k);
+  return moving_pair(w, a, b, c0[0], c1[0], rs[0], rb[0], c0[1], c1[1], rs[1], rb[1], false, k);
 }
 
 void Detector::detect_continuous(const world::World& w) {
@@ -252,7 +263,9 @@ void Detector::detect_continuous(const world::World& w) {
       ++stats_.sweep_hits;
       Contact k;
       k.a = e, k.b = static_cast<int>(o), k.b_fixed = true, k.dt_s = dt;
-      if (sphere) {
+      const bool continuing = !sphere && std::binary_search(previous_.begin(), previous_.end(),
+                                                            contact_key(e, static_cast<int>(o), true));
+      if (sphere || continuing) {
         ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];
         k.point = h.point, k.normal = h.normal, k.toi = h.t, k.method = method_of(Tier::Sphere, true);
       } else if (!narrow(w, e, static_cast<int>(o), true, tier, h.t, h.t_exit, k)) {
@@ -273,8 +286,9 @@ void Detector::detect_continuous(const world::World& w) {
     // Canonical order by id, so that the answer does not depend on where entities are stored.
     if (ents.id[b] < ents.id[a]) std::swap(a, b), std::swap(ia, ib);
     Contact k;
+    const bool continuing = std::binary_search(previous_.begin(), previous_.end(), contact_key(a, b, false));
     if (!moving_pair(w, a, b, c0_[ia], c1_[ia], r_sphere_[ia], r_bound_[ia], c0_[ib], c1_[ib], r_sphere_[ib],
-                     r_bound_[ib], k))
+                     r_bound_[ib], continuing, k))
       continue;
     touching_.push_back(contact_key(a, b, false));
     candidates_.push_back(k);

@@ -25,11 +25,11 @@ bool is_munition(const world::World& w, int e) { return w.kinds[w.ents.kind[e]].
 void Detector::detect(const world::World& w, std::vector<Contact>& out) {
   touching_.clear();
   candidates_.clear();
+  std::sort(previous_.begin(), previous_.end());
   if (opt_.method == Method::Thesis) detect_thesis(w);
   else detect_continuous(w);
 
   // One event per contact episode: report only pairs not touching last tick.
-  std::sort(previous_.begin(), previous_.end());
   for (const Contact& k : candidates_) {
     const uint64_t key = pair_key(k.a, k.b, k.b_fixed);
     if (std::binary_search(previous_.begin(), previous_.end(), key)) continue;

@@ -73,6 +73,17 @@ Vec3 support(const Shape& s, const Pose& p, const Vec3& d) {
   return p.rot * *arg + p.pos;
 }
 
+// Support of a posed box in world direction d.
+Vec3 box_support(const Shape& s, const Pose& p, const Vec3& d) {
+  const Vec3 dl = p.rot.transpose() * d;
+  Vec3 c = s.box_centre;
+  for (int k = 0; k < 3; ++k) c[k] += dl[k] >= 0 ? s.box_half[k] : -s.box_half[k];
+  return p.rot * c + p.pos;
+}
+
+// A shape swept along the segment 0..sweep: its support plus the segment's.
+inline Vec3 swept(const Vec3& sup, const Vec3& sweep, const Vec3& d) { return sweep.dot(d) > 0 ? Vec3(sup + sweep) : sup; }
+
 // Reduces the simplex to the feature nearest the origin and sets the new direction. True when
 // the origin is enclosed (tetrahedron).
 bool do_simplex(Vec3* s, int& n, Vec3& d) {
@@ -129,24 +140,41 @@ bool do_simplex(Vec3* s, int& n, Vec3& d) {
   return true;
 }
 
-}  // namespace
-
-bool hull_overlap(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb) {
-  if (a.hull.empty() || b.hull.empty()) return false;
-  Vec3 d = (pb.rot * b.sphere_centre + pb.pos) - (pa.rot * a.sphere_centre + pa.pos);
+// GJK on the Minkowski difference given by its support function: true when it holds the
+// origin (touching counts; 64 iterations without an answer count as overlap).
+template <class F>
+bool gjk(F&& diff_support, Vec3 d) {
   if (d.squaredNorm() < 1e-18) d = Vec3::UnitX();
   Vec3 s[4];
   int n = 0;
-  s[n++] = support(a, pa, d) - support(b, pb, -d);
+  s[n++] = diff_support(d);
   d = -s[0];
   for (int it = 0; it < 64; ++it) {
     if (d.squaredNorm() < 1e-30) return true;  // origin on the simplex
-    const Vec3 p = support(a, pa, d) - support(b, pb, -d);
+    const Vec3 p = diff_support(d);
     if (p.dot(d) < 0) return false;  // the origin lies beyond the support plane: separated
     s[n++] = p;
     if (do_simplex(s, n, d)) return true;
   }
   return true;
+}
+
+}  // namespace
+
+bool hull_overlap(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb) {
+  return hull_overlap_swept(a, pa, b, pb, Vec3::Zero());
+}
+
+bool hull_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, const Vec3& d) {
+  if (a.hull.empty() || b.hull.empty()) return false;
+  const Vec3 d0 = (pb.rot * b.sphere_centre + pb.pos) - (pa.rot * a.sphere_centre + pa.pos);
+  return gjk([&](const Vec3& v) { return Vec3(support(a, pa, v) - swept(support(b, pb, -v), d, -v)); }, d0);
+}
+
+bool box_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, const Vec3& d) {
+  if (d.squaredNorm() == 0) return box_overlap(a, pa, b, pb);
+  const Vec3 d0 = (pb.rot * b.box_centre + pb.pos) - (pa.rot * a.box_centre + pa.pos);
+  return gjk([&](const Vec3& v) { return Vec3(box_support(a, pa, v) - swept(box_support(b, pb, -v), d, -v)); }, d0);
 }
 
 namespace {
@@ -240,6 +268,44 @@ bool mesh_overlap(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb
       if (!tri_tri_overlap(ta, s.tb[k])) continue;
       if (point) *point = pa.rot * intersection_point(ta, s.tb[k]) + pa.pos;
       return true;
+    }
+  }
+  return false;
+}
+
+bool mesh_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, const Vec3& d,
+                        ShapeScratch& s) {
+  if (d.squaredNorm() == 0) return mesh_overlap(a, pa, b, pb, s);
+  // In a's model space: b's triangles at the start, and their sweep.
+  const Mat3 r = pa.rot.transpose() * pb.rot;
+  const Vec3 t = pa.rot.transpose() * (pb.pos - pa.pos);
+  const Vec3 dl = pa.rot.transpose() * d;
+  s.tb.resize(b.tris.size());
+  s.lo_b.resize(b.tris.size());
+  s.hi_b.resize(b.tris.size());
+  Vec3 blo = Vec3::Constant(INFINITY), bhi = Vec3::Constant(-INFINITY);
+  for (size_t k = 0; k < b.tris.size(); ++k) {
+    for (int v = 0; v < 3; ++v) s.tb[k][v] = r * b.tris[k][v] + t;
+    tri_box(s.tb[k], s.lo_b[k], s.hi_b[k]);
+    s.lo_b[k] = s.lo_b[k].cwiseMin(s.lo_b[k] + dl);
+    s.hi_b[k] = s.hi_b[k].cwiseMax(s.hi_b[k] + dl);
+    blo = blo.cwiseMin(s.lo_b[k]), bhi = bhi.cwiseMax(s.hi_b[k]);
+  }
+  auto tri_support = [](const std::array<Vec3, 3>& q, const Vec3& v) {
+    const double x0 = q[0].dot(v), x1 = q[1].dot(v), x2 = q[2].dot(v);
+    return x0 >= x1 && x0 >= x2 ? q[0] : x1 >= x2 ? q[1] : q[2];
+  };
+  for (const auto& ta : a.tris) {
+    Vec3 lo, hi;
+    tri_box(ta, lo, hi);
+    if ((lo.array() > bhi.array()).any() || (hi.array() < blo.array()).any()) continue;
+    for (size_t k = 0; k < s.tb.size(); ++k) {
+      if ((lo.array() > s.hi_b[k].array()).any() || (hi.array() < s.lo_b[k].array()).any()) continue;
+      const auto& tb = s.tb[k];
+      // The prism b's triangle sweeps, against a's triangle (a at rest in its own frame).
+      const Vec3 d0 = (tb[0] + tb[1] + tb[2]) / 3 + 0.5 * dl - (ta[0] + ta[1] + ta[2]) / 3;
+      if (gjk([&](const Vec3& v) { return Vec3(tri_support(ta, v) - swept(tri_support(tb, -v), dl, -v)); }, d0))
+        return true;
     }
   }
   return false;

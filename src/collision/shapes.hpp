@@ -44,6 +44,13 @@ bool hull_overlap(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb
 // pair of triangles cross the other triangle (a point on their intersection).
 bool mesh_overlap(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, ShapeScratch& s,
                   Vec3* point = nullptr);
+// The same over a time interval: b moves by `d` (world frame, m) relative to a from the poses
+// given, without turning. True when the shapes touch at some time of the interval (the moving
+// shape swept along d is convex for a box, a hull and a triangle: GJK answers exactly).
+bool box_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, const Vec3& d);
+bool hull_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, const Vec3& d);
+bool mesh_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, const Vec3& d,
+                        ShapeScratch& s);
 // Triangle-triangle test (separating axes: the two normals and the nine edge cross products;
 // coplanar pairs also the in-plane edge normals). A zero-area triangle has no surface: false.
 bool tri_tri_overlap(const std::array<Vec3, 3>& t, const std::array<Vec3, 3>& u);
