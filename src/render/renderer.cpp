@@ -28,6 +28,7 @@ constexpr float kSkyHorizon[3] = {0.74f, 0.80f, 0.86f};
 constexpr float kSkyZenith[3] = {0.33f, 0.53f, 0.82f};
 constexpr int kMinOverlayW = 64, kMinOverlayH = 48;
 constexpr double kWaterCellM = 200.0;      // water grid cell (haze is computed per vertex)
+constexpr int kCraterSegments = 16;        // crater decal: segments around
 
 void check_gl(const char* where) {
   const GLenum e = gl::GetError();
@@ -55,6 +56,13 @@ struct Renderer::Impl {
   std::unique_ptr<Overlay> overlay;
   Effects effects;
   FrameStats stats;
+  struct Crater {
+    double t0;
+    int first, count;  // vertices in crater_verts
+  };
+  std::vector<Crater> craters;
+  std::vector<TerrainVertex> crater_verts;
+  unsigned crater_vao = 0, crater_vbo = 0;
   bool have_water = false;
   int water_vertices = 0;
   float hmin = 0, hmax = 1;
@@ -210,6 +218,19 @@ Renderer::Renderer(const RenderOptions& opt, const world::World& world) : p_(std
     gl::EnableVertexAttribArray(2);
     gl::VertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, st, reinterpret_cast<void*>(6 * sizeof(float)));
   }
+  gl::GenVertexArrays(1, &p.crater_vao);
+  gl::BindVertexArray(p.crater_vao);
+  gl::GenBuffers(1, &p.crater_vbo);
+  gl::BindBuffer(GL_ARRAY_BUFFER, p.crater_vbo);
+  {
+    const auto st = static_cast<GLsizei>(sizeof(TerrainVertex));
+    gl::EnableVertexAttribArray(0);
+    gl::VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, st, reinterpret_cast<void*>(0));
+    gl::EnableVertexAttribArray(1);
+    gl::VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, st, reinterpret_cast<void*>(3 * sizeof(float)));
+    gl::EnableVertexAttribArray(2);
+    gl::VertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, st, reinterpret_cast<void*>(6 * sizeof(float)));
+  }
   gl::GenVertexArrays(1, &p.particle_vao);
   gl::BindVertexArray(p.particle_vao);
   gl::GenBuffers(1, &p.particle_vbo);
@@ -236,6 +257,8 @@ Renderer::~Renderer() {
   p.particle_prog.reset();
   p.sky_prog.reset();
   gl::DeleteBuffers(1, &p.water_vbo);
+  gl::DeleteBuffers(1, &p.crater_vbo);
+  gl::DeleteVertexArrays(1, &p.crater_vao);
   gl::DeleteBuffers(1, &p.particle_vbo);
   gl::DeleteVertexArrays(1, &p.water_vao);
   gl::DeleteVertexArrays(1, &p.particle_vao);
@@ -256,6 +279,33 @@ void Renderer::terrain_changed(const world::PostRect& r) {
 
 void Renderer::add_explosion(const Vec3& at, double t, float scale) { p_->effects.add_explosion(at, t, scale); }
 void Renderer::add_fire(const Vec3& at, double t, double seconds) { p_->effects.add_fire(at, t, seconds); }
+
+void Renderer::add_crater(const Vec3& at, double radius_m, double t) {
+  Impl& p = *p_;
+  if (!at.allFinite() || !std::isfinite(t) || !(radius_m > 0) || radius_m > 1e4) return;
+  p.ctx->make_current();
+  // rings: centre, 0.5 r, r, 1.6 r; scorch 1 -> 0 so the outer ring meets the terrain's own colour
+  const double rings[4] = {0.0, 0.5, 1.0, 1.6};
+  const float scorch[4] = {1.0f, 0.95f, 0.55f, 0.0f};
+  const auto& t_ = p.world->terrain;
+  const auto vtx = [&](int ring, int k) {
+    const double a = 2 * kPi * k / kCraterSegments, rr = radius_m * rings[ring];
+    const double x = at.x() + rr * std::cos(a), y = at.y() + rr * std::sin(a);
+    const Vec3 n = t_.normal(x, y);
+    return TerrainVertex{static_cast<float>(x), static_cast<float>(y), static_cast<float>(t_.height(x, y) + 0.05),
+                         static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()), scorch[ring]};
+  };
+  const int first = static_cast<int>(p.crater_verts.size());
+  for (int ring = 0; ring < 3; ++ring)
+    for (int k = 0; k < kCraterSegments; ++k) {
+      const TerrainVertex a0 = vtx(ring, k), a1 = vtx(ring, k + 1), b0 = vtx(ring + 1, k), b1 = vtx(ring + 1, k + 1);
+      p.crater_verts.insert(p.crater_verts.end(), {a0, b0, b1, a0, b1, a1});
+    }
+  p.craters.push_back({t, first, static_cast<int>(p.crater_verts.size()) - first});
+  gl::BindBuffer(GL_ARRAY_BUFFER, p.crater_vbo);
+  gl::BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(p.crater_verts.size() * sizeof(TerrainVertex)),
+                 p.crater_verts.data(), GL_STATIC_DRAW);
+}
 
 void Renderer::Impl::draw_scene(const SceneView& v, const ViewMath& vm) {
   const world::World& w = *world;
@@ -288,6 +338,17 @@ void Renderer::Impl::draw_scene(const SceneView& v, const ViewMath& vm) {
   stats.terrain_chunks_drawn = ts.chunks_drawn;
   stats.terrain_chunks_culled = ts.chunks_culled;
   stats.terrain_triangles = ts.triangles;
+  // crater decals that exist at this scenario time, pulled towards the eye so they win over the ground
+  bool any_crater = false;
+  for (const auto& c : craters) any_crater |= c.t0 <= v.t;
+  if (any_crater) {
+    gl::Enable(GL_POLYGON_OFFSET_FILL);
+    gl::PolygonOffset(-2.0f, -4.0f);
+    gl::BindVertexArray(crater_vao);
+    for (const auto& c : craters)
+      if (c.t0 <= v.t) gl::DrawArrays(GL_TRIANGLES, c.first, c.count);
+    gl::Disable(GL_POLYGON_OFFSET_FILL);
+  }
 
   // objects: fixed ones by block, then entities
   meshes->clear();

@@ -79,6 +79,9 @@ class Renderer {
   // Effects start at scenario time t; an explosion of scale 1 is a tank round (fireball ~8 m).
   void add_explosion(const Vec3& at, double t, float scale);
   void add_fire(const Vec3& at, double t, double seconds);
+  // A crater of `radius_m` at `at` from scenario time t on: a scorched disc laid on the terrain
+  // (on coarse terrain a crater moves few posts, so the lowered mesh alone hardly shows it).
+  void add_crater(const Vec3& at, double radius_m, double t);
 
   void render(const SceneView& view, const Camera& cam, const Hud& hud, bool map_inset = true);
   // PNG of the last frame (rows flipped: GL is bottom-up). False (with nothing written) on failure.

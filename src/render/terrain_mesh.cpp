@@ -9,6 +9,8 @@
 namespace npsnet::render {
 namespace {
 
+constexpr double kScorchMaxSpacingM = 4.0;
+
 // Sample positions 0, s, 2s, ... and always the last post.
 void samples(int n, int step, std::vector<int>& out) {
   out.clear();
@@ -186,7 +188,11 @@ int TerrainMesh::rebuild(const world::Terrain& t, const world::PostRect& r) {
         for (int i = ci0; i <= ci1; ++i) {
           const TerrainVertex& old = verts_[c.base + static_cast<size_t>((j - c.j0) * c.nx + (i - c.i0))];
           const float dz = old.z - t.post(i, j);  // > 0 where the ground went down
-          const float scorch = std::clamp(old.scorch + std::max(0.0f, dz) * 0.6f, 0.0f, 1.0f);
+          // blacken lowered posts only where posts are close enough to draw a crater's shape;
+          // on coarser terrain the renderer's crater decals show it (Renderer::add_crater)
+          const float scorch = spacing_ <= kScorchMaxSpacingM
+                                   ? std::clamp(old.scorch + std::max(0.0f, dz) * 0.6f, 0.0f, 1.0f)
+                                   : old.scorch;
           fill_post(t, c, i, j, scorch);
           ++rewritten;
         }

@@ -381,3 +381,20 @@ TEST(Render, WaterDrawnAtItsLevel) {
   EXPECT_GT(pond.b, pond.r + 40) << "water is blue: " << pond.r << " " << pond.g << " " << pond.b;
   EXPECT_GT(dry.g, dry.b) << "ground is not";
 }
+
+TEST(Render, CraterDecalFromItsTimeOn) {
+  world::World w = flat_world();
+  render::Renderer r(options(160, 120), w);
+  r.add_crater(Vec3(128, 128, 50), 6.0, 5.0);
+  render::Camera cam{Vec3(128, 100, 70), Vec3(128, 128, 50), 40};
+  const render::ViewMath vm = render::make_view(cam.eye, cam.target, cam.fov_y_deg, 160, 120);
+  double cx = 0, cy = 0;
+  ASSERT_TRUE(render::project_to_pixel(vm, Vec3(128, 128, 50), cx, cy));
+  const auto centre = [&](double t) {
+    r.render({&w, nullptr, nullptr, t, -1}, cam, {}, false);
+    return at(r.pixels(), 160, static_cast<int>(cx), static_cast<int>(cy));
+  };
+  const Rgb before = centre(4.0), after = centre(6.0);
+  EXPECT_GT(before.r + before.g + before.b, 200) << "ground before the crater";
+  EXPECT_LT(after.r + after.g + after.b, 100) << "scorched crater floor after it";
+}

@@ -183,6 +183,7 @@ int main(int argc, char** argv) {
     const Vec3 at = w.ents.pos[0] + Vec3(25, 15, 0);
     const world::PostRect pr = w.terrain.crater(at.x(), at.y(), 6.0, 2.0);
     r.terrain_changed(pr);
+    r.add_crater(Vec3(at.x(), at.y(), w.terrain.height(at.x(), at.y())), 6.0, 0.0);
     r.add_explosion(Vec3(at.x(), at.y(), w.terrain.height(at.x(), at.y())), 0.0, 1.0f);
     r.add_fire(w.ents.pos[0] + Vec3(-20, 30, 0), 0.0, 20.0);
     for (double t : {0.1, 1.0, 4.0}) {
