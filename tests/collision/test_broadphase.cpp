@@ -124,3 +124,62 @@ TEST(ShapeTiers, UnitCubesSeparateAtTheirFaces) {
     EXPECT_EQ(collision::mesh_overlap(s, a, s, b, sc), want) << x;
   }
 }
+
+TEST(ShapeTiers, SweptTestsCatchAThinPlateThatPassesBetweenTwoSamples) {
+  // Two plates 2 m x 2 m x 2 cm; b moves 10 m through a within one interval: apart at both ends.
+  world::Model m;
+  for (int i = 0; i < 8; ++i) m.vertices.emplace_back(i & 1 ? 1.f : -1.f, i & 2 ? 1.f : -1.f, i & 4 ? 0.01f : -0.01f);
+  const uint32_t f[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (auto& q : f) {
+    m.faces.push_back(world::Face{static_cast<uint32_t>(m.face_vertices.size()), 4});
+    for (uint32_t k : q) m.face_vertices.push_back(k);
+  }
+  m.bbox_min = Vec3f(-1, -1, -0.01f), m.bbox_max = Vec3f(1, 1, 0.01f);
+  const auto s = collision::make_shape(m);
+  collision::ShapeScratch sc;
+  collision::Pose a, b;
+  b.rot = Eigen::AngleAxisd(M_PI / 2, Vec3::UnitY()).toRotationMatrix();  // b stands on edge
+  b.pos = Vec3(-5, 0, 0);
+  const Vec3 through(10, 0, 0), over(10, 0, 5);  // over: b is 1 m above a while above it
+  collision::Pose end = b;
+  end.pos += through;
+  EXPECT_FALSE(collision::mesh_overlap(s, a, s, b, sc));
+  EXPECT_FALSE(collision::mesh_overlap(s, a, s, end, sc));
+  EXPECT_TRUE(collision::box_overlap_swept(s, a, s, b, through));
+  EXPECT_TRUE(collision::hull_overlap_swept(s, a, s, b, through));
+  EXPECT_TRUE(collision::mesh_overlap_swept(s, a, s, b, through, sc));
+  EXPECT_FALSE(collision::box_overlap_swept(s, a, s, b, over));
+  EXPECT_FALSE(collision::hull_overlap_swept(s, a, s, b, over));
+  EXPECT_FALSE(collision::mesh_overlap_swept(s, a, s, b, over, sc));
+}
+
+TEST(ShapeTiers, SweptMeshAgreesWithDenseSamplingOnRealModels) {
+  auto w = test::flat_world();
+  std::vector<collision::Shape> shapes;
+  for (int i = 0; i < w.models.size(); ++i) shapes.push_back(collision::make_shape(w.models[i]));
+  std::mt19937 rng(23);
+  std::uniform_int_distribution<int> pick(0, w.models.size() - 1);
+  std::uniform_real_distribution<double> ang(0, 360), off(-1, 1);
+  collision::ShapeScratch sc;
+  int hits = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const auto& a = shapes[static_cast<size_t>(pick(rng))];
+    const auto& b = shapes[static_cast<size_t>(pick(rng))];
+    collision::Pose pa, pb;
+    pa.rot = world::pose_rotation(ang(rng), 0, 0);
+    pb.rot = world::pose_rotation(ang(rng), 0, 0);
+    const double reach = a.bound_radius + b.bound_radius;
+    pb.pos = Vec3(off(rng), off(rng), off(rng) * 0.3) * reach * 1.5;
+    const Vec3 d = Vec3(off(rng), off(rng), off(rng) * 0.2) * reach;
+    const bool swept = collision::mesh_overlap_swept(a, pa, b, pb, d, sc);
+    bool sampled = false;
+    for (int k = 0; k <= 400 && !sampled; ++k) {
+      collision::Pose q = pb;
+      q.pos += d * (k / 400.0);
+      sampled = collision::mesh_overlap(a, pa, b, q, sc);
+    }
+    if (sampled) EXPECT_TRUE(swept) << "trial " << trial;  // sampling can only miss, never invent
+    hits += swept;
+  }
+  EXPECT_GT(hits, 30);
+}
