@@ -251,3 +251,24 @@ TEST(Method, ParsesNamesAndRejectsOthers) {
   EXPECT_THROW(collision::options_from("continuous", "auto", 0.0), std::invalid_argument);
   EXPECT_THROW(collision::options_from("continuous", "auto", NAN), std::invalid_argument);
 }
+
+TEST(Tiers, KindsDeclareTheirTiersInKindsToml) {
+  auto w = test::flat_world();
+  EXPECT_EQ(w.kinds[w.kinds.find("m1a1")].top_tier, 4);
+  EXPECT_EQ(collision::top_tier(w.kinds[w.kinds.find("m1a1")]), collision::Tier::Mesh);
+  EXPECT_EQ(collision::top_tier(w.kinds[w.kinds.find("tree")]), collision::Tier::Sphere);
+  EXPECT_EQ(collision::top_tier(w.kinds[w.kinds.find("he_round")]), collision::Tier::Sphere);
+  const auto bad = test::write_file("kinds_bad_tiers.toml",
+                                    "[thing]\nmobility = \"ground\"\nmass_kg = 1.0\nstates = [\"intact\"]\n"
+                                    "models = [\"" + test::source("models/hmmwv.obj").string() + "\"]\n"
+                                    "dis_type = [1, 1, 0, 0, 0, 0, 0]\ntiers = [\"sphere\", \"voxel\"]\n");
+  world::ModelLibrary lib;
+  try {
+    world::KindTable::load(bad, lib);
+    ADD_FAILURE() << "a bad tier name must be an error";
+  } catch (const std::exception& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("thing.tiers"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("voxel"), std::string::npos) << msg;
+  }
+}
