@@ -398,3 +398,30 @@ TEST(Render, CraterDecalFromItsTimeOn) {
   EXPECT_GT(before.r + before.g + before.b, 200) << "ground before the crater";
   EXPECT_LT(after.r + after.g + after.b, 100) << "scorched crater floor after it";
 }
+
+TEST(Render, CullingAndDistanceLod) {
+  world::World w;
+  const int n = 401;  // 10 km square, 25 m posts
+  w.terrain = world::Terrain(n, n, 25.0, std::vector<float>(static_cast<size_t>(n * n), 10.0f),
+                             geo::Geodetic{35.98, -121.25, 0.0});
+  w.kinds = world::KindTable::load(kSrc / "models/kinds.toml", w.models);
+  const int tree = w.kinds.find("tree");
+  // camera at (5000, 1000) looking north
+  w.fixed.add("near", tree, Vec3(5000, 1060, 10), 0.0f, 2.5f);    // 60 m ahead: full model
+  w.fixed.add("far", tree, Vec3(5000, 3500, 10), 0.0f, 2.5f);     // 2.5 km: simplified
+  w.fixed.add("beyond", tree, Vec3(5000, 9900, 10), 0.0f, 2.5f);  // 8.9 km: not drawn
+  w.fixed.add("behind", tree, Vec3(5000, 600, 10), 0.0f, 2.5f);   // behind the camera: culled
+  render::Renderer r(options(320, 240), w);
+  r.render({&w, nullptr, nullptr, 0, -1}, {Vec3(5000, 1000, 14), Vec3(5000, 2000, 14), 50}, {}, false);
+  const auto& st = r.stats();
+  EXPECT_EQ(st.objects_full, 1);
+  EXPECT_EQ(st.objects_simple, 1);
+  EXPECT_GT(st.blocks_culled, 0);
+  EXPECT_GT(st.terrain_chunks_culled, 0);
+  // terrain far away is drawn coarser: fewer triangles than the full-resolution visible chunks
+  EXPECT_LT(st.terrain_triangles, static_cast<int64_t>(st.terrain_chunks_drawn) * 32 * 32 * 2);
+  // looking south instead, the tree behind is the near one
+  r.render({&w, nullptr, nullptr, 0, -1}, {Vec3(5000, 1000, 14), Vec3(5000, 0, 14), 50}, {}, false);
+  EXPECT_EQ(r.stats().objects_full, 1);
+  EXPECT_EQ(r.stats().objects_simple, 0);
+}
