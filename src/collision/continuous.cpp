@@ -87,7 +87,8 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
   int n = rel > 0 ? static_cast<int>(std::ceil(rel * (t_out - t_in) / step)) : 1;
   n = std::clamp(n, 1, kMaxSamples);
   double lo = t_in, hi = -1;
-  for (int s = 1; s <= n; ++s) {
+  if (touching(t_in, t_in)) hi = t_in;  // touching already where the bounds first meet
+  for (int s = 1; s <= n && hi < 0; ++s) {
     const double t = t_in + (t_out - t_in) * s / n;
     if (touching(lo, t)) {
       hi = t;
