@@ -10,6 +10,11 @@
 #include "node/snapshots.hpp"
 #endif
 #include "node/simulation.hpp"
+// --- network ---
+#ifdef NPSNET_HAVE_NET
+#include "node/net_bridge.hpp"
+#endif
+// --- network end ---
 #include "world/scenario.hpp"
 
 namespace npsnet::node {
@@ -38,10 +43,29 @@ int run_command(const RunOptions& opt) {
     std::fprintf(stderr, "--window: no display (DISPLAY is not set); run headless without --window\n");
     return 2;
   }
-  if (o.net != "off") {
-    std::fprintf(stderr, "--net %s: networking is not built yet (issue 5); use --net off\n", o.net.c_str());
+  // --- network ---
+  const bool net_on = o.net != "off";
+#ifdef NPSNET_HAVE_NET
+  double dis_timeout_s = dis_defaults::kTimeoutS;
+  if (net_on) {
+    if (auto u = net::parse_udp_url(o.net); !u) {
+      std::fprintf(stderr, "--net %s: %s\n", o.net.c_str(), u.error().c_str());
+      return 2;
+    }
+    try {
+      dis_timeout_s = dis_timeout_from_env(dis_timeout_s);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      return 2;
+    }
+  }
+#else
+  if (net_on) {
+    std::fprintf(stderr, "--net %s: this build has no networking (NPSNET_NET=OFF); use --net off\n", o.net.c_str());
     return 2;
   }
+#endif
+  // --- network end ---
   if (o.start_at && (*o.start_at - wall_now() > 3600 || !std::isfinite(*o.start_at))) {
     std::fprintf(stderr, "--start-at %.3f: more than an hour from now\n", *o.start_at);
     return 2;
@@ -81,7 +105,22 @@ int run_command(const RunOptions& opt) {
 #else
   auto more = [] { return false; };
 #endif
-  const bool paced = o.realtime || o.window;
+  // --- network ---
+#ifdef NPSNET_HAVE_NET
+  std::unique_ptr<NetBridge> bridge;
+  if (net_on) {
+    try {
+      bridge = std::make_unique<NetBridge>(
+          BridgeOptions{o.net, o.iface, o.node, o.exercise, o.site, o.app > 0 ? o.app : o.node, dis_timeout_s}, sim, log);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "npsnet: --net %s --iface %s: %s\n", o.net.c_str(), o.iface.c_str(), e.what());
+      return 2;
+    }
+    bridge->attach();
+  }
+#endif
+  // --- network end ---
+  const bool paced = o.realtime || o.window || net_on;  // --net: scenario time = wall time
   if (o.start_at)
     while (wall_now() < *o.start_at) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   const auto t0 = std::chrono::steady_clock::now();
@@ -101,6 +140,14 @@ int run_command(const RunOptions& opt) {
     }
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // --- network ---
+#ifdef NPSNET_HAVE_NET
+  if (bridge) {
+    bridge->leave();
+    std::fprintf(stderr, "%s\n", bridge->summary().c_str());
+  }
+#endif
+  // --- network end ---
   log.flush();
   if (!o.quiet) {
     std::fprintf(stderr, "npsnet: done: %ld ticks in %.2f s wall (%.3f ms/tick); events -> %s\n", done, wall,

@@ -1,0 +1,110 @@
+#include "lan_support.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+namespace lan {
+
+int random_port() {
+  std::random_device rd;
+  return 20000 + static_cast<int>(rd() % 40000);
+}
+
+double unix_now() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+std::filesystem::path npsnet_binary() { return std::filesystem::path(NPSNET_BINARY_DIR) / "npsnet"; }
+
+std::filesystem::path fresh_dir(const std::string& tag) {
+  std::random_device rd;
+  auto d = std::filesystem::temp_directory_path() /
+           ("npsnet_" + tag + "_" + std::to_string(::getpid()) + "_" + std::to_string(rd() % 1000000));
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+Procs::~Procs() {
+  for (int pid : running_) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
+  }
+}
+
+int Procs::start(const std::vector<std::string>& args, const std::filesystem::path& out,
+                 const std::vector<std::string>& env) {
+  const std::string bin = npsnet_binary().string();
+  std::vector<std::string> all{bin};
+  all.insert(all.end(), args.begin(), args.end());
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error("fork failed");
+  if (pid == 0) {
+    const int fd = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      ::dup2(fd, 1);
+      ::dup2(fd, 2);
+      ::close(fd);
+    }
+    for (const auto& e : env) ::putenv(const_cast<char*>(e.c_str()));
+    std::vector<char*> argv;
+    for (auto& a : all) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::execv(bin.c_str(), argv.data());
+    ::_exit(127);
+  }
+  running_.push_back(pid);
+  return pid;
+}
+
+int Procs::wait(int pid, double timeout_s) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  int status = 0;
+  while (std::chrono::steady_clock::now() < end) {
+    const pid_t r = ::waitpid(pid, &status, WNOHANG);
+    if (r == pid) {
+      running_.erase(std::remove(running_.begin(), running_.end(), pid), running_.end());
+      if (WIFEXITED(status)) return WEXITSTATUS(status);
+      if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
+      return -1;
+    }
+    if (r < 0) return -1;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill_now(pid);
+  return -1;
+}
+
+void Procs::kill_now(int pid) {
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, nullptr, 0);
+  running_.erase(std::remove(running_.begin(), running_.end(), pid), running_.end());
+}
+
+std::vector<nlohmann::json> read_events(const std::filesystem::path& file) {
+  std::vector<nlohmann::json> out;
+  std::ifstream in(file);
+  std::string line;
+  while (std::getline(in, line))
+    if (!line.empty()) out.push_back(nlohmann::json::parse(line));
+  return out;
+}
+
+std::string read_text(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace lan

@@ -1,0 +1,45 @@
+// Helpers of the multi-node tests: start `npsnet run` processes (fork/exec, output to a file),
+// wait for them with a deadline (then SIGKILL), read JSON Lines event logs. Every child is killed
+// and reaped when its Procs goes out of scope. Everything talks to 127.0.0.1 only.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace lan {
+
+// A random UDP port in [20000, 60000) for one test run.
+int random_port();
+// Wall clock, UNIX seconds.
+double unix_now();
+// <build>/npsnet
+std::filesystem::path npsnet_binary();
+// A fresh empty folder under the system temp folder.
+std::filesystem::path fresh_dir(const std::string& tag);
+
+class Procs {
+ public:
+  Procs() = default;
+  ~Procs();  // SIGKILL + reap every child still running
+  Procs(const Procs&) = delete;
+  Procs& operator=(const Procs&) = delete;
+  // Starts npsnet with `args` (after argv[0]); extra environment "NAME=VALUE" entries; stdout and
+  // stderr go to `out`. Returns the child's pid.
+  int start(const std::vector<std::string>& args, const std::filesystem::path& out,
+            const std::vector<std::string>& env = {});
+  // Waits until `pid` exits or the deadline passes (then SIGKILL). Returns the exit status
+  // (0-255), 128+signal when killed by a signal, or -1 when it had to be killed at the deadline.
+  int wait(int pid, double timeout_s);
+  void kill_now(int pid);  // SIGKILL and reap
+
+ private:
+  std::vector<int> running_;
+};
+
+std::vector<nlohmann::json> read_events(const std::filesystem::path& file);
+std::string read_text(const std::filesystem::path& file);
+
+}  // namespace lan
