@@ -425,3 +425,37 @@ TEST(Render, CullingAndDistanceLod) {
   EXPECT_EQ(r.stats().objects_full, 1);
   EXPECT_EQ(r.stats().objects_simple, 0);
 }
+
+TEST(Models, EveryKindAndStateHasAValidModel) {
+  world::ModelLibrary lib;
+  const world::KindTable kinds = world::KindTable::load(kSrc / "models/kinds.toml", lib);
+  for (int k = 0; k < kinds.size(); ++k) {
+    ASSERT_EQ(kinds[k].models.size(), kinds[k].states.size()) << kinds[k].name;
+    for (int m : kinds[k].models) {
+      const world::Model& mod = lib[m];
+      EXPECT_GE(mod.faces.size(), 20u) << mod.file;
+      EXPECT_LE(mod.faces.size(), 300u) << mod.file;
+      // no degenerate face; outward counter-clockwise winding: the enclosed volume is positive
+      double vol = 0;
+      for (const auto& f : mod.faces) {
+        EXPECT_GT(f.normal.norm(), 0.5f) << mod.file << ": degenerate face";
+        const Vec3f& a = mod.vertices[mod.face_vertices[f.first]];
+        for (uint32_t i = 1; i + 1 < f.count; ++i)
+          vol += a.dot(mod.vertices[mod.face_vertices[f.first + i]].cross(mod.vertices[mod.face_vertices[f.first + i + 1]])) / 6.0;
+      }
+      EXPECT_GT(vol, 0.0) << mod.file;
+    }
+  }
+  // sizes the brief asks for (metres): tree ~8 m tall, tank 9.8 long, ship 30 long
+  const auto extent = [&](const std::string& kind) {
+    const world::Model& m = lib[kinds[kinds.find(kind)].models[0]];
+    return Vec3f(m.bbox_max - m.bbox_min);
+  };
+  EXPECT_NEAR(extent("tree").z(), 8.0f, 0.5f);
+  EXPECT_NEAR(extent("m1a1").y(), 9.8f, 0.2f);
+  EXPECT_NEAR(extent("m1a1").x(), 3.7f, 0.2f);
+  EXPECT_NEAR(extent("patrol_ship").y(), 30.0f, 0.5f);
+  EXPECT_NEAR(extent("f16").y(), 15.0f, 0.5f);
+  EXPECT_NEAR(extent("f16").x(), 10.0f, 0.3f);
+  EXPECT_NEAR(extent("watertower").z(), 30.0f, 1.0f);
+}
