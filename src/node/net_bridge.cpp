@@ -241,6 +241,7 @@ int NetBridge::state_from_appearance(int kind, std::uint32_t appearance) const {
 
 void NetBridge::before_step(world::World& w) {
   now_s_ = clock_s();
+  if (!started_) started_ = true, start_s_ = now_s_;  // rates count from the first tick
   pending_.clear();
   if (remote_id_.size() < w.ents.size()) remote_id_.resize(w.ents.size());
   check_signal();

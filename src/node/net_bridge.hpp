@@ -128,6 +128,7 @@ class NetBridge {
   net::RemoteEntityTable remotes_;
   std::uint16_t cultural_app_;
   double start_s_ = 0, now_s_ = 0;
+  bool started_ = false;
 
   // Local vehicles we publish (world indices), one DrPublisher each.
   std::vector<int> own_;
