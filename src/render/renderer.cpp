@@ -334,7 +334,7 @@ void Renderer::Impl::draw_scene(const SceneView& v, const ViewMath& vm) {
   gl::Uniform1i(terrain_prog->loc("u_water"), 0);
   gl::Disable(GL_CULL_FACE);  // skirts face both ways
   TerrainDrawStats ts;
-  terrain->draw(vm, kTerrainLodK / std::max(0.1, opt.lod_scale), ts);
+  terrain->draw(vm, kTerrainLodK / std::max(0.1, opt.lod_scale), max_dist, ts);
   stats.terrain_chunks_drawn = ts.chunks_drawn;
   stats.terrain_chunks_culled = ts.chunks_culled;
   stats.terrain_triangles = ts.triangles;

@@ -216,7 +216,7 @@ const TerrainMesh::IndexRange& TerrainMesh::indices_for(int nx, int ny, int step
   return ranges_.at({nx, ny, step});
 }
 
-void TerrainMesh::draw(const ViewMath& v, double lod_k, TerrainDrawStats& stats) const {
+void TerrainMesh::draw(const ViewMath& v, double lod_k, double max_dist_m, TerrainDrawStats& stats) const {
   gl::BindVertexArray(vao_);
   for (const auto& c : chunks_) {
     const Vec3 lo(c.i0 * spacing_, c.j0 * spacing_, c.zmin - c.skirt);
@@ -225,10 +225,14 @@ void TerrainMesh::draw(const ViewMath& v, double lod_k, TerrainDrawStats& stats)
       ++stats.chunks_culled;
       continue;
     }
+    const Vec3 near = v.eye.cwiseMax(lo).cwiseMin(hi);
+    const double d = (near - v.eye).norm();
+    if (d > max_dist_m) {
+      ++stats.chunks_culled;
+      continue;
+    }
     int step = 1;
     if (lod_k > 0) {
-      const Vec3 near = v.eye.cwiseMax(lo).cwiseMin(hi);
-      const double d = (near - v.eye).norm();
       while (step * 2 <= cells_ && d >= step * 2 * spacing_ * lod_k) step *= 2;
     }
     const IndexRange& r = indices_for(c.nx, c.ny, step);

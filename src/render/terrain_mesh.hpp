@@ -36,8 +36,9 @@ class TerrainMesh {
   // Rebuild the posts of `r` (and their neighbours' normals); returns the vertices rewritten.
   int rebuild(const world::Terrain& t, const world::PostRect& r);
   // Draws visible chunks. `lod_k`: a chunk at distance d uses the largest step s (power of two,
-  // <= chunk_cells) with d >= s * spacing * lod_k; lod_k <= 0 = always full resolution.
-  void draw(const ViewMath& v, double lod_k, TerrainDrawStats& stats) const;
+  // <= chunk_cells) with d >= s * spacing * lod_k; lod_k <= 0 = always full resolution. Chunks
+  // wholly farther than max_dist_m (where the haze has left nothing) are skipped.
+  void draw(const ViewMath& v, double lod_k, double max_dist_m, TerrainDrawStats& stats) const;
 
   const std::vector<TerrainVertex>& vertices() const { return verts_; }
   std::vector<TerrainVertex> read_back() const;  // the GPU copy (tests)
