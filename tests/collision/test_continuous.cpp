@@ -272,3 +272,23 @@ TEST(Tiers, KindsDeclareTheirTiersInKindsToml) {
     EXPECT_NE(msg.find("voxel"), std::string::npos) << msg;
   }
 }
+
+TEST(Method, ScenarioSelectsMethodAndTierAndRejectsUnknownOnes) {
+  const std::string world = "[world]\nterrain = \"" + test::source("terrain/default.tif").string() + "\"\n";
+  const auto def = world::load_scenario(test::write_file("method_default.toml", world));
+  EXPECT_EQ(def.collision_method, "continuous");  // the default
+  EXPECT_EQ(def.collision_tier, "auto");
+  const auto th = world::load_scenario(
+      test::write_file("method_thesis.toml", "collision_method = \"thesis\"\ncollision_tier = \"hull\"\n" + world));
+  EXPECT_EQ(th.collision_method, "thesis");
+  EXPECT_EQ(collision::options_from(th.collision_method, th.collision_tier, 0.1).tier, collision::Tier::Hull);
+  for (const char* bad : {"collision_method = \"fast\"\n", "collision_tier = \"voxel\"\n"}) {
+    try {
+      world::load_scenario(test::write_file("method_bad.toml", std::string(bad) + world));
+      ADD_FAILURE() << bad;
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string(bad).substr(0, 14)), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("method_bad.toml:1"), std::string::npos) << e.what();
+    }
+  }
+}
