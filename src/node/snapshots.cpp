@@ -21,6 +21,16 @@ render::Hud make_hud(const world::World& w, const world::Entities& ents, int d) 
   return hud;
 }
 
+// The driven vehicle's eye: at the front edge of its model, a little above the hull top, so the
+// view is not blocked by the vehicle itself.
+render::Camera driver_eye(const world::World& w, int d) {
+  const world::Kind& k = w.kinds[w.ents.kind[d]];
+  const world::Model& m = w.models[k.models[0]];
+  const Vec2 f = heading_to_dir(w.ents.heading_deg[d]);
+  const Vec3 front = w.ents.pos[d] + Vec3(f.x(), f.y(), 0) * (static_cast<double>(m.bbox_max.y()) + 0.5);
+  return render::vehicle_eye(front, w.ents.heading_deg[d], w.ents.pitch_deg[d], std::max(1.5, 0.8 * k.height_m));
+}
+
 std::string sanitize(const std::string& s) {
   std::string o;
   for (char c : s) o += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-') ? c : '_';
@@ -113,6 +123,7 @@ void Snapshots::after_tick(const world::World& w, const world::Changes& c, const
     r_->add_fire(p, w.t, 20.0);
   }
   for (const auto& p : a.terrain_patches) r_->terrain_changed(p);
+  for (const auto& cr : c.craters) r_->add_crater(cr.point, cr.radius_m, w.t);
   for (size_t i = 0; i < pending_.size();) {
     if (pending_[i].due_t <= w.t + 1e-9) {
       write(w, pending_[i].base + "-result.png", nullptr, pending_[i].eye, pending_[i].target, w.t);
@@ -124,7 +135,7 @@ void Snapshots::after_tick(const world::World& w, const world::Changes& c, const
   if (opt_.every_s > 0 && w.t + 1e-9 >= next_periodic_) {
     const int d = driven(w);
     if (d >= 0) {
-      const auto cam = render::vehicle_eye(w.ents.pos[d], w.ents.heading_deg[d], w.ents.pitch_deg[d], 3.0);
+      const auto cam = driver_eye(w, d);
       char name[64];
       std::snprintf(name, sizeof name, "%04d-periodic-t%07.1f.png", ++counter_, w.t);
       write(w, name, nullptr, cam.eye, cam.target, w.t);
@@ -143,7 +154,7 @@ void Snapshots::after_tick(const world::World& w, const world::Changes& c, const
 bool Snapshots::present(const world::World& w) {
   const int d = driven(w);
   render::Camera cam;
-  if (d >= 0) cam = render::vehicle_eye(w.ents.pos[d], w.ents.heading_deg[d], w.ents.pitch_deg[d], 3.0);
+  if (d >= 0) cam = driver_eye(w, d);
   render::SceneView v;
   v.world = &w, v.t = w.t, v.driven = d;
   const render::Hud hud = make_hud(w, w.ents, d);
