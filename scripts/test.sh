@@ -5,7 +5,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh build
-(cd build && ctest --output-on-failure -j2 --timeout 600)
+# Under a virtual display when xvfb-run exists, so the GLFW window test runs too.
+XVFB=""
+if command -v xvfb-run >/dev/null 2>&1 && [ -z "${DISPLAY:-}" ]; then XVFB="xvfb-run -a"; fi
+(cd build && $XVFB ctest --output-on-failure -j2 --timeout 600)
 if [ "${NPSNET_NO_SANITIZE:-0}" != "1" ]; then
   bash scripts/build.sh build-asan -DNPSNET_SANITIZE=ON -DNPSNET_BENCH=OFF
   (cd build-asan && ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 \
