@@ -94,13 +94,20 @@ net::DrThresholds thresholds(double timeout_s) {
 }
 }  // namespace
 
-NetBridge::NetBridge(const BridgeOptions& o, Simulation& sim, EventLog& log)
+std::unique_ptr<net::Session> open_session(const BridgeOptions& o) {
+  return std::make_unique<net::Session>(session_config(o));
+}
+
+NetBridge::NetBridge(const BridgeOptions& o, Simulation& sim, EventLog& log) : NetBridge(o, open_session(o), sim, log) {}
+
+NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> session, Simulation& sim, EventLog& log)
     : opt_(o),
       sim_(sim),
       log_(log),
-      session_(session_config(o)),
+      session_(std::move(session)),
       remotes_(thresholds(o.timeout_s)),
       cultural_app_(static_cast<std::uint16_t>(kCulturalAppBit | o.app)) {
+  if (!session_) throw std::runtime_error("--net: no session");
   world::World& w = sim_.world();
   auto& ents = w.ents;
   if (ents.size() >= 0x8000)
@@ -165,11 +172,11 @@ std::string NetBridge::summary() const {
                 "\n  net: %d local ground vehicles, %llu entity_state PDUs in %.1f s: %.1f per vehicle-minute "
                 "(fixed 10 Hz: 600); %zu remote entities",
                 ground_vehicles_, (unsigned long long)ground_es_sent_, s, per, remotes_.size());
-  return "  net: " + session_.counters().summary() + b;
+  return "  net: " + session_->counters().summary() + b;
 }
 
 net::EntityId NetBridge::own_id(int e) const {
-  return session_.entity_id(static_cast<std::uint16_t>(e + 1));
+  return session_->entity_id(static_cast<std::uint16_t>(e + 1));
 }
 
 bool NetBridge::is_own_vehicle(int e) const {
@@ -245,7 +252,7 @@ void NetBridge::before_step(world::World& w) {
   pending_.clear();
   if (remote_id_.size() < w.ents.size()) remote_id_.resize(w.ents.size());
   check_signal();
-  session_.poll(net::Overloaded{
+  session_->poll(net::Overloaded{
       [&](const net::EntityStatePdu& p) { on_entity_state(p); },
       [&](const net::EntityStateUpdatePdu& p) { remotes_.apply(p, now_s_); },
       [&](const net::FirePdu& p) { on_fire(p); },
@@ -566,12 +573,22 @@ void NetBridge::publish_vehicles() {
     es_.appearance = app;
     net::write_kinematics(s, pubs_[i].algorithm(), es_);
     es_.header.timestamp = net::relative_timestamp(t);
-    if (session_.send(es_)) {
-      pubs_[i].mark_sent(s, t);
-      sent_appearance_[i] = app;
-      if (w.kinds[w.ents.kind[e]].mobility == world::Mobility::Ground) ++ground_es_sent_;
+    es_.header.exercise_id = static_cast<std::uint8_t>(opt_.exercise);
+    // Entity States of one tick go out packed, several to a datagram of at most 1400 octets.
+    if (!batch_.add(es_)) {
+      flush_batch();
+      if (!batch_.add(es_)) continue;  // cannot happen for our PDUs (no variable parameters)
     }
+    pubs_[i].mark_sent(s, t);
+    sent_appearance_[i] = app;
+    if (w.kinds[w.ents.kind[e]].mobility == world::Mobility::Ground) ++ground_es_sent_;
   }
+  flush_batch();
+}
+
+void NetBridge::flush_batch() {
+  if (!batch_.empty()) session_->send(batch_);
+  batch_.clear();
 }
 
 void NetBridge::leave() {
@@ -587,7 +604,7 @@ void NetBridge::leave() {
     es_.appearance = appearance_of(e) | net::kAppearanceDeactivated;
     net::write_kinematics(s, net::DrAlgorithm::Static, es_);
     es_.header.timestamp = net::relative_timestamp(w.t);
-    session_.send(es_);
+    session_->send(es_);
   }
 }
 
@@ -619,7 +636,7 @@ void NetBridge::publish_collisions(const TickReport& r) {
     p.location_in_entity = {static_cast<float>(d.x() * std::sin(h) + d.y() * std::cos(h)),
                             static_cast<float>(d.x() * std::cos(h) - d.y() * std::sin(h)), static_cast<float>(-d.z())};
     p.header.timestamp = net::relative_timestamp(w.t);
-    session_.send(p);
+    session_->send(p);
   }
 }
 
@@ -640,7 +657,7 @@ void NetBridge::send_cultural(int o) {
   auto mk = net::make_marking(w.fixed.id[o].substr(0, 11));
   p.marking = mk ? mk.value() : net::Marking{};
   p.header.timestamp = net::relative_timestamp(w.t);
-  session_.send(p);
+  session_->send(p);
 }
 
 void NetBridge::publish_fixed(const TickReport& r) {
@@ -692,7 +709,7 @@ void NetBridge::publish_fires(const TickReport& r) {
     p.velocity = {static_cast<float>(ve.x()), static_cast<float>(ve.y()), static_cast<float>(ve.z())};
     p.range = static_cast<float>((ents.aim[m] - ents.pos[m]).norm());
     p.header.timestamp = net::relative_timestamp(w.t);
-    session_.send(p);
+    session_->send(p);
   }
 }
 
@@ -721,7 +738,7 @@ void NetBridge::publish_detonations(const TickReport& r) {
     p.descriptor.quantity = 1;
     p.detonation_result = d.target >= 0 ? kResultEntityImpact : kResultGroundImpact;
     p.header.timestamp = net::relative_timestamp(w.t);
-    session_.send(p);
+    session_->send(p);
   }
 }
 

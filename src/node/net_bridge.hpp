@@ -5,7 +5,8 @@
 //    rate (rad/s, body z), the kind's DIS type, marking = scenario id, damage in appearance
 //    bits 3-4 (0 none, 1 slight, 2 moderate, 3 destroyed), DR algorithm RVW, sent when the
 //    DrPublisher says so (1 m / 3 deg / 5 s heartbeat) or when the appearance changes. Entity
-//    number = entity index + 1 (every node loads the same scenario, so indices agree).
+//    number = entity index + 1 (every node loads the same scenario, so indices agree). The
+//    Entity States of one tick are packed several to a datagram (at most 1400 octets).
 //  * Vehicles of other nodes start local = 0 and inactive; their first Entity State activates
 //    them (matched by marking; an unknown marking adds an entity of the kind whose DIS type
 //    matches, or the generic kind of its domain). Each tick, before dynamics, a remote entity's
@@ -36,6 +37,7 @@
 // joins or a munition from the network detonates.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -62,11 +64,17 @@ inline constexpr std::uint16_t kCulturalAppBit = 0x8000;
 // std::runtime_error with a message on a bad value.
 double dis_timeout_from_env(double fallback);
 
+// Opens the DIS session of `o` (socket bound, group joined). Throws std::runtime_error with an
+// actionable message (bad URL, iface, identity). Done before anything is written.
+std::unique_ptr<net::Session> open_session(const BridgeOptions& o);
+
 class NetBridge {
  public:
   // Opens the session (throws std::runtime_error with an actionable message) and marks the
   // vehicles of other nodes remote and inactive.
   NetBridge(const BridgeOptions& o, Simulation& sim, EventLog& log);
+  // The same with a session opened by open_session(o).
+  NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> session, Simulation& sim, EventLog& log);
   ~NetBridge();
   NetBridge(const NetBridge&) = delete;
   NetBridge& operator=(const NetBridge&) = delete;
@@ -80,7 +88,7 @@ class NetBridge {
   bool decides(const collision::Contact& c);
   void after_tick(const TickReport& r);
 
-  const net::Counters& counters() const { return session_.counters(); }
+  const net::Counters& counters() const { return session_->counters(); }
   // Counters plus the Entity State rate of the local vehicles, several lines.
   std::string summary() const;
   // Entity State PDUs sent for local ground vehicles, their number, and seconds published.
@@ -124,7 +132,7 @@ class NetBridge {
   BridgeOptions opt_;
   Simulation& sim_;
   EventLog& log_;
-  net::Session session_;
+  std::unique_ptr<net::Session> session_;
   net::RemoteEntityTable remotes_;
   std::uint16_t cultural_app_;
   double start_s_ = 0, now_s_ = 0;
@@ -139,6 +147,8 @@ class NetBridge {
   std::uint64_t ground_es_sent_ = 0;
   int ground_vehicles_ = 0;
   net::EntityStatePdu es_;  // reused
+  net::DatagramBuilder batch_;  // this tick's Entity States, packed (1400 octets a datagram)
+  void flush_batch();
 
   // Remote entities: id -> world index (kept across timeouts, so a rejoin reuses the entity).
   struct IdHash {

@@ -59,6 +59,16 @@ int run_command(const RunOptions& opt) {
       return 2;
     }
   }
+  const BridgeOptions net_opt{o.net, o.iface, o.node, o.exercise, o.site, o.app > 0 ? o.app : o.node, dis_timeout_s};
+  std::unique_ptr<net::Session> session;  // opened before anything is written
+  if (net_on) {
+    try {
+      session = open_session(net_opt);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "npsnet: --net %s --iface %s: %s\n", o.net.c_str(), o.iface.c_str(), e.what());
+      return 2;
+    }
+  }
 #else
   if (net_on) {
     std::fprintf(stderr, "--net %s: this build has no networking (NPSNET_NET=OFF); use --net off\n", o.net.c_str());
@@ -110,8 +120,7 @@ int run_command(const RunOptions& opt) {
   std::unique_ptr<NetBridge> bridge;
   if (net_on) {
     try {
-      bridge = std::make_unique<NetBridge>(
-          BridgeOptions{o.net, o.iface, o.node, o.exercise, o.site, o.app > 0 ? o.app : o.node, dis_timeout_s}, sim, log);
+      bridge = std::make_unique<NetBridge>(net_opt, std::move(session), sim, log);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "npsnet: --net %s --iface %s: %s\n", o.net.c_str(), o.iface.c_str(), e.what());
       return 2;
