@@ -1,6 +1,6 @@
 // Broad phases for the continuous method (and the speed benchmark), on plain arrays.
 //  MovingGrid: all pairs i < j of overlapping boxes among N moving bodies. A hashed 2D grid
-//    whose cell is 4x the largest extent among the ordinary boxes (boxes more than 4x the
+//    whose cell is 3x the largest extent among the ordinary boxes (boxes more than 4x the
 //    mean extent are "large" and tested against every box), so a box lies in at most 2 x 2
 //    cells; each box is listed in the cells it overlaps, counting-sorted by hash bucket into one
 //    contiguous array; then every bucket's entries are tested pairwise, a pair reported only in

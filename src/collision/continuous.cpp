@@ -86,6 +86,9 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
   const double step = kSampleFraction * std::max(1e-3, std::min(sa.min_half, sb.min_half));
   int n = rel > 0 ? static_cast<int>(std::ceil(rel * (t_out - t_in) / step)) : 1;
   n = std::clamp(n, 1, kMaxSamples);
+  // The whole interval first: most pairs whose bounds meet never touch, and one exact swept
+  // test per tier says so.
+  if (!touching(t_in, t_out)) return false;
   double lo = t_in, hi = -1;
   if (touching(t_in, t_in)) hi = t_in;  // touching already where the bounds first meet
   for (int s = 1; s <= n && hi < 0; ++s) {
