@@ -135,6 +135,7 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
   for (size_t f = 0; f < w.fixed.size(); ++f) fixed_net_state_[f] = static_cast<int16_t>(w.fixed.state[f]);
   pending_.reserve(16);
   start_s_ = now_s_ = clock_s();
+  if (const char* v = std::getenv("NPSNET_DIS_PACK")) pack_ = std::string(v) == "1";
   struct sigaction sa {};
   sa.sa_handler = on_usr1;
   sigemptyset(&sa.sa_mask);
@@ -574,10 +575,13 @@ void NetBridge::publish_vehicles() {
     net::write_kinematics(s, pubs_[i].algorithm(), es_);
     es_.header.timestamp = net::relative_timestamp(t);
     es_.header.exercise_id = static_cast<std::uint8_t>(opt_.exercise);
-    // Entity States of one tick go out packed, several to a datagram of at most 1400 octets.
-    if (!batch_.add(es_)) {
-      flush_batch();
-      if (!batch_.add(es_)) continue;  // cannot happen for our PDUs (no variable parameters)
+    if (pack_) {  // several Entity States to a datagram of at most 1400 octets
+      if (!batch_.add(es_)) {
+        flush_batch();
+        if (!batch_.add(es_)) continue;  // cannot happen for our PDUs (no variable parameters)
+      }
+    } else if (!session_->send(es_)) {
+      continue;
     }
     pubs_[i].mark_sent(s, t);
     sent_appearance_[i] = app;

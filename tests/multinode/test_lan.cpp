@@ -143,7 +143,8 @@ TEST(LanExercise, KilledNodeTimesOutAndRejoins) {
   const double killed_at = lan::unix_now() - start;
   while (lan::unix_now() < start + 6.0) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   auto b2 = node_args("rejoin.toml", port, 2, lan::unix_now() + 0.5, 4, dir, "2b");
-  const int p2b = procs.start(b2, dir / "out_2b.txt", env);
+  // The restarted node packs its Entity States several to a datagram (NPSNET_DIS_PACK=1).
+  const int p2b = procs.start(b2, dir / "out_2b.txt", {"NPSNET_DIS_TIMEOUT_S=1.5", "NPSNET_DIS_PACK=1"});
   ASSERT_EQ(procs.wait(p2b, 30.0), 0) << lan::read_text(dir / "out_2b.txt");
   ASSERT_EQ(procs.wait(p1, 30.0), 0) << lan::read_text(dir / "out_1.txt");
 

@@ -63,7 +63,7 @@ TEST(LanLatency, LoopbackEntityStateMedianAndP99) {
               p99, us.back());
   RecordProperty("median_us", std::to_string(median));
   RecordProperty("p99_us", std::to_string(p99));
-  EXPECT_LT(median, 5000.0) << "loopback latency should be far below a tick (100 ms)";
+  EXPECT_LT(median, 50000.0) << "loopback latency should be far below a tick (100 ms)";
 }
 
 // The same across two processes (what two nodes on one host see): a forked echo process
@@ -141,5 +141,5 @@ TEST(LanLatency, TwoProcessesHalfRoundTrip) {
               us.size(), median, p99);
   RecordProperty("median_us", std::to_string(median));
   RecordProperty("p99_us", std::to_string(p99));
-  EXPECT_LT(median, 5000.0);
+  EXPECT_LT(median, 50000.0) << "half a tick at most, even on a loaded machine";
 }
