@@ -1,6 +1,7 @@
 // Multi-node LAN exercise on loopback multicast (239.1.2.3, a random port, --iface 127.0.0.1):
 // three `npsnet run` processes on tests/multinode/data/lan.toml. Node 1's tank t1 and node 2's
-// APC a2 collide; node 2's hmmwv h2 runs into tree2; node 3's tank s3 fires a round that lands.
+// APC a2 collide broadside (kill), t1b and a2b at a shallow angle (bounce); node 2's hmmwv h2 runs
+// into tree2; node 3's tank s3 fires a round that lands.
 // Every event log must hold that collision once with the same pair and outcomes, the damage of
 // each side once, the crater at the same place, and tree2 in the same state. A second test kills
 // a node (SIGKILL) and restarts it: the other logs entity_timeout, then entity_joined again.
@@ -94,6 +95,18 @@ TEST(LanExercise, CollisionAndCraterAgreeOnThreeNodes) {
   EXPECT_EQ(hits[1]["method"], "network");
   EXPECT_EQ(hits[2]["method"], "network");
   EXPECT_EQ(hits[0]["outcome_a"], "kill") << "broadside at 40 km/h each is in the kill band";
+  // The shallow-angle pair bounces, decided once by node 1 (t1b's id is the lower), logged once
+  // with the same outcomes everywhere.
+  for (int n = 0; n < 3; ++n) {
+    SCOPED_TRACE("node " + std::to_string(n + 1));
+    std::vector<json> b;
+    for (const auto& e : of_type(logs[n], "collision"))
+      if (pair_of(e) == std::set<std::string>{"t1b", "a2b"}) b.push_back(e);
+    ASSERT_EQ(b.size(), 1u);
+    EXPECT_EQ(b[0]["outcome_a"], "bounce");
+    EXPECT_EQ(b[0]["outcome_b"], "bounce");
+    EXPECT_EQ(b[0]["method"] == "network", n != 0);
+  }
   // Crater at the same place (metres).
   const auto c3 = of_type(logs[2], "crater")[0]["point"];
   for (int n = 0; n < 2; ++n) {
@@ -107,9 +120,9 @@ TEST(LanExercise, CollisionAndCraterAgreeOnThreeNodes) {
     for (const auto& e : of_type(logs[n], "entity_joined")) s.insert(e["id"].get<std::string>());
     return s;
   };
-  EXPECT_EQ(joined(0), (std::set<std::string>{"a2", "h2", "s3"}));
-  EXPECT_EQ(joined(1), (std::set<std::string>{"t1", "s3"}));
-  EXPECT_EQ(joined(2), (std::set<std::string>{"t1", "a2", "h2"}));
+  EXPECT_EQ(joined(0), (std::set<std::string>{"a2", "a2b", "h2", "s3"}));
+  EXPECT_EQ(joined(1), (std::set<std::string>{"t1", "t1b", "s3"}));
+  EXPECT_EQ(joined(2), (std::set<std::string>{"t1", "t1b", "a2", "a2b", "h2"}));
   // tree2 (run down by node 2's hmmwv) ends in the same state everywhere: cultural feature.
   std::string tree_state[3];
   for (int n = 0; n < 3; ++n)
