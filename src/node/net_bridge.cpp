@@ -30,6 +30,10 @@ constexpr std::uint8_t kCollisionInelastic = 0;
 constexpr std::uint8_t kCollisionElastic = 1;
 constexpr std::uint8_t kEntityKindCultural = 5;
 constexpr std::uint8_t kEntityKindMunition = 2;
+// Entity State datagrams one tick sends at most (one PDU each); the rest go on the next ticks.
+// A receiver drains its socket once a tick: 128 datagrams fit its default receive buffer
+// (Linux rmem_default 208 KiB), where the 517 first Entity States of the default scenario did not.
+constexpr size_t kMaxDatagramsPerTick = 128;
 constexpr unsigned kDamageShift = 3;  // appearance bits 3-4: damage
 constexpr std::uint32_t kDamageMask = 3u << kDamageShift;
 
@@ -553,7 +557,11 @@ void NetBridge::publish_vehicles() {
   const auto& w = sim_.world();
   const double t = w.t;
   const double dt = sim_.dt();
-  for (size_t i = 0; i < own_.size(); ++i) {
+  const size_t n = own_.size();
+  size_t sent_now = 0, first_deferred = n;
+  // Round robin from where the last tick's cap stopped, so no vehicle waits more than a few ticks.
+  for (size_t k = 0; k < n; ++k) {
+    const size_t i = (rr_ + k) % n;
     const int e = own_[i];
     net::KinematicState s = truth(e);
     const Vec3 v = vv(s.velocity);
@@ -565,6 +573,10 @@ void NetBridge::publish_vehicles() {
     const std::uint32_t app = appearance_of(e);
     const bool changed = pubs_[i].has_sent() && app != sent_appearance_[i];
     if (!changed && pubs_[i].needs_update(s, t) == net::DrPublisher::Reason::None) continue;
+    if (!pack_ && sent_now >= kMaxDatagramsPerTick && !changed) {  // a damage change never waits
+      if (first_deferred == n) first_deferred = i;
+      continue;
+    }
     es_.entity_id = own_id(e);
     es_.force_id = 1;
     es_.entity_type = to_net(w.kinds[w.ents.kind[e]].dis);
@@ -585,8 +597,10 @@ void NetBridge::publish_vehicles() {
     }
     pubs_[i].mark_sent(s, t);
     sent_appearance_[i] = app;
+    ++sent_now;
     if (w.kinds[w.ents.kind[e]].mobility == world::Mobility::Ground) ++ground_es_sent_;
   }
+  if (first_deferred != n) rr_ = first_deferred;
   flush_batch();
 }
 

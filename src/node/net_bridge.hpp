@@ -6,7 +6,8 @@
 //    bits 3-4 (0 none, 1 slight, 2 moderate, 3 destroyed), DR algorithm RVW, sent when the
 //    DrPublisher says so (1 m / 3 deg / 5 s heartbeat) or when the appearance changes. Entity
 //    number = entity index + 1 (every node loads the same scenario, so indices agree). One PDU
-//    a datagram (Wireshark 4.0 decodes only the first PDU of a datagram); NPSNET_DIS_PACK=1
+//    a datagram (Wireshark 4.0 decodes only the first PDU of a datagram), at most 128 a tick (the
+//    rest follow on the next ticks, round robin; a damage change never waits); NPSNET_DIS_PACK=1
 //    packs a tick's Entity States several to a datagram (at most 1400 octets), which keeps
 //    start-up and heartbeat bursts of hundreds of vehicles within a receiver's socket buffer.
 //  * Vehicles of other nodes start local = 0 and inactive; their first Entity State activates
@@ -151,6 +152,7 @@ class NetBridge {
   net::EntityStatePdu es_;  // reused
   net::DatagramBuilder batch_;  // this tick's Entity States, packed (1400 octets a datagram)
   bool pack_ = false;           // NPSNET_DIS_PACK=1
+  size_t rr_ = 0;               // first local vehicle looked at next tick (send cap round robin)
   void flush_batch();
 
   // Remote entities: id -> world index (kept across timeouts, so a rejoin reuses the entity).
