@@ -79,7 +79,10 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
       const Entry& ea = entries_[a];
       for (uint32_t b = a + 1; b < e1; ++b) {
         const Entry& eb = entries_[b];
-        if (ea.lox > eb.hix || eb.lox > ea.hix || ea.loy > eb.hiy || eb.loy > ea.hiy) continue;
+        // All four compares, no early exit: in a crowded bucket most pairs fail on one of them
+        // at random, and a branch per compare mispredicts.
+        const bool apart = (ea.lox > eb.hix) | (eb.lox > ea.hix) | (ea.loy > eb.hiy) | (eb.loy > ea.hiy);
+        if (apart) continue;
         if (ea.cx != eb.cx || ea.cy != eb.cy) continue;  // another cell in this bucket
         // Reported only in the first cell the two boxes share.
         if (std::max(ifloor(ea.lox * inv), ifloor(eb.lox * inv)) != ea.cx ||
