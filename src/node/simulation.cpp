@@ -78,6 +78,7 @@ void Simulation::scheduled_fires() {
   while (next_fire_ < schedule_.size() && schedule_[next_fire_].t <= w_.t + 1e-9) {
     const Scheduled& s = schedule_[next_fire_++];
     if (s.shooter < 0 || s.munition < 0) continue;
+    if (!w_.ents.local[s.shooter]) continue;  // another node drives it: its node fires
     Vec3 point = s.point;
     if (s.target_entity >= 0) point = world::entity_centre(w_, s.target_entity);
     if (s.target_fixed >= 0) point = world::fixed_centre(w_, s.target_fixed);
