@@ -7,7 +7,8 @@
 // Beside it: our full continuous step (Detector: swept spheres, tiers up to the mesh) on the
 // same vehicles: its first tick (every touching pair a new contact, the whole tier cascade) and
 // the ticks after (episodes going on). Prints the ratio table; writes bench/results/broadphase.csv.
-//   build-c6/bench/bench_broadphase [--quick]     (needs Bullet and FCL linked: see report)
+//   build/bench/bench_broadphase [--quick]   (bench/CMakeLists.txt links Bullet and FCL; --quick:
+//   N <= 5,000, short runs, no CSV)
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
