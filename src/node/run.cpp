@@ -163,7 +163,7 @@ int run_command(const RunOptions& opt) {
                  1000 * wall / std::max(1L, done), o.events.string().c_str());
     for (const auto& [k, n] : log.counts()) std::fprintf(stderr, "  %-12s %d\n", k.c_str(), n);
     const auto& s = sim.stats();
-    std::fprintf(stderr, "  collision tests: fixed %lld, L1 %lld, L2 %lld, L3 %lld (rejected %lld), contacts %lld\n",
+    std::fprintf(stderr, "  collision method %s: fixed tests %lld, L1 %lld, L2 %lld, L3 %lld (rejected %lld), contacts %lld\n", sc.collision_method.c_str(),
                  (long long)s.fixed_tests, (long long)s.l1_pairs, (long long)s.l2_pairs, (long long)s.l3_tests,
                  (long long)s.l3_rejects, (long long)s.contacts);
   }
