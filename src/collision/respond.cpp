@@ -265,19 +265,13 @@ void detonate(const world::World& w, int munition, const Vec3& point, int hit, w
   const double R = km.blast_radius_m;
   if (R <= 0) return;
   auto levels = [&](double d) { return d < R / 3 ? 3 : d < 2 * R / 3 ? 2 : d < R ? 1 : 0; };
-  const int c0 = w.grid.cell_of(point.x() - R, point.y() - R), c1 = w.grid.cell_of(point.x() + R, point.y() + R);
-  for (int j = c0 / w.grid.cols(); j <= c1 / w.grid.cols(); ++j)
-    for (int i = c0 % w.grid.cols(); i <= c1 % w.grid.cols(); ++i) {
-      auto [first, last] = w.grid.objects_in(j * w.grid.cols() + i);
-      for (auto it = first; it != last; ++it) {
-        const int o = static_cast<int>(*it);
-        const int lv = levels((w.fixed.pos[o] - point).norm());
-        if (lv == 0) continue;
-        const int ls = last_state(w.kinds[w.fixed.kind[o]]);
-        if (w.kinds[w.fixed.kind[o]].resistance > 100) continue;  // rock
-        out.fixed.push_back({o, lv == 3 ? ls : std::min(ls, w.fixed.state[o] + lv)});
-      }
-    }
+  w.grid.for_each_near(w.fixed, point.x(), point.y(), R, [&](int o) {
+    const int lv = levels((w.fixed.pos[o] - point).norm());
+    const world::Kind& k = w.kinds[w.fixed.kind[o]];
+    if (lv == 0 || k.resistance > 100) return;  // out of reach, or a rock
+    const int ls = last_state(k);
+    out.fixed.push_back({o, lv == 3 ? ls : std::min(ls, w.fixed.state[o] + lv)});
+  });
   for (int e = 0; e < static_cast<int>(ents.size()); ++e) {
     if (e == munition || e == hit || !ents.active[e]) continue;
     const world::Kind& k = w.kinds[ents.kind[e]];

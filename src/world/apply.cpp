@@ -56,14 +56,10 @@ void apply(World& w, const Changes& c, Applied& out) {
     const PostRect r = w.terrain.crater(cr.point.x(), cr.point.y(), cr.radius_m, cr.depth_m);
     if (r.empty()) continue;
     out.terrain_patches.push_back(r);
-    // Fixed objects and ground vehicles standing in the bowl settle onto the new ground.
-    const int c0 = w.grid.cell_of(cr.point.x() - cr.radius_m, cr.point.y() - cr.radius_m);
-    const int c1 = w.grid.cell_of(cr.point.x() + cr.radius_m, cr.point.y() + cr.radius_m);
-    for (int j = c0 / w.grid.cols(); j <= c1 / w.grid.cols(); ++j)
-      for (int i = c0 % w.grid.cols(); i <= c1 % w.grid.cols(); ++i) {
-        auto [b, e] = w.grid.objects_in(j * w.grid.cols() + i);
-        for (auto p = b; p != e; ++p) w.fixed.pos[*p].z() = w.terrain.height(w.fixed.pos[*p].x(), w.fixed.pos[*p].y());
-      }
+    // Fixed objects standing in the bowl settle onto the new ground (vehicles follow the terrain).
+    w.grid.for_each_near(w.fixed, cr.point.x(), cr.point.y(), cr.radius_m, [&](int o) {
+      w.fixed.pos[o].z() = w.terrain.height(w.fixed.pos[o].x(), w.fixed.pos[o].y());
+    });
   }
 }
 

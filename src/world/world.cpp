@@ -50,19 +50,23 @@ int GridIndex::cell_of(double x, double y) const {
   return j * cols_ + i;
 }
 
+GridIndex::CellRect GridIndex::cells_of(double x, double y, double r) const {
+  return {std::clamp(static_cast<int>(std::floor((x - r) / cell_)), 0, cols_ - 1),
+          std::clamp(static_cast<int>(std::floor((y - r) / cell_)), 0, rows_ - 1),
+          std::clamp(static_cast<int>(std::floor((x + r) / cell_)), 0, cols_ - 1),
+          std::clamp(static_cast<int>(std::floor((y + r) / cell_)), 0, rows_ - 1)};
+}
+
 void GridIndex::build(const FixedObjects& objs, double width_m, double depth_m, double cell_m, bool home_only) {
   cell_ = cell_m;
   cols_ = std::max(1, static_cast<int>(std::ceil(width_m / cell_m)));
   rows_ = std::max(1, static_cast<int>(std::ceil(depth_m / cell_m)));
   const size_t ncell = static_cast<size_t>(cols_) * rows_;
+  home_only_ = home_only;
   // For each object, the range of cells its bounding circle overlaps (or its home cell).
   auto range = [&](size_t k, int& i0, int& j0, int& i1, int& j1) {
-    const double r = home_only ? 0.0 : objs.radius_m[k];
-    const Vec3& p = objs.pos[k];
-    i0 = std::clamp(static_cast<int>(std::floor((p.x() - r) / cell_)), 0, cols_ - 1);
-    i1 = std::clamp(static_cast<int>(std::floor((p.x() + r) / cell_)), 0, cols_ - 1);
-    j0 = std::clamp(static_cast<int>(std::floor((p.y() - r) / cell_)), 0, rows_ - 1);
-    j1 = std::clamp(static_cast<int>(std::floor((p.y() + r) / cell_)), 0, rows_ - 1);
+    const CellRect c = cells_of(objs.pos[k].x(), objs.pos[k].y(), home_only ? 0.0 : objs.radius_m[k]);
+    i0 = c.i0, j0 = c.j0, i1 = c.i1, j1 = c.j1;
   };
   start_.assign(ncell + 1, 0);
   for (size_t k = 0; k < objs.size(); ++k) {

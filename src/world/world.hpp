@@ -3,6 +3,7 @@
 // Entities and fixed objects are referred to by index; nothing holds pointers across ticks.
 // The world is changed in one place, world::apply (apply.hpp), from collision outcomes.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -42,9 +43,30 @@ class GridIndex {
   }
   int count_in(int cell) const { return static_cast<int>(start_[cell + 1] - start_[cell]); }
 
+  struct CellRect {
+    int i0, j0, i1, j1;  // inclusive gridsquare columns / rows, clamped to the map
+  };
+  // Gridsquares the square [x - r, x + r] x [y - r, y + r] overlaps.
+  CellRect cells_of(double x, double y, double r) const;
+  // Calls f(object index) once for every fixed object listed in a gridsquare that the square
+  // [x - r, x + r] x [y - r, y + r] overlaps (an object listed in several is reported once).
+  template <class F>
+  void for_each_near(const FixedObjects& objs, double x, double y, double r, F&& f) const {
+    const CellRect q = cells_of(x, y, r);
+    for (int j = q.j0; j <= q.j1; ++j)
+      for (int i = q.i0; i <= q.i1; ++i) {
+        auto [first, last] = objects_in(j * cols_ + i);
+        for (auto it = first; it != last; ++it) {
+          const CellRect o = cells_of(objs.pos[*it].x(), objs.pos[*it].y(), home_only_ ? 0.0 : objs.radius_m[*it]);
+          if (i == std::max(o.i0, q.i0) && j == std::max(o.j0, q.j0)) f(static_cast<int>(*it));
+        }
+      }
+  }
+
  private:
   int cols_ = 0, rows_ = 0;
   double cell_ = 125;
+  bool home_only_ = false;
   std::vector<uint32_t> start_, items_;
 };
 
