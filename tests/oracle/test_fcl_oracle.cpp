@@ -12,28 +12,15 @@
 #include <random>
 
 #include "collision/collision.hpp"
+#include "support/fcl_mesh.hpp"
 #include "support/fixture.hpp"
 
 using namespace npsnet;
 
 namespace {
 
-using Mesh = fcl::BVHModel<fcl::OBBRSSd>;
-
-std::shared_ptr<Mesh> fcl_mesh(const collision::Shape& s) {
-  auto m = std::make_shared<Mesh>();
-  std::vector<fcl::Vector3d> pts;
-  std::vector<fcl::Triangle> tris;
-  for (const auto& t : s.tris) {
-    const size_t b = pts.size();
-    for (const Vec3& v : t) pts.emplace_back(v.x(), v.y(), v.z());
-    tris.emplace_back(b, b + 1, b + 2);
-  }
-  m->beginModel();
-  m->addSubModel(pts, tris);
-  m->endModel();
-  return m;
-}
+using Mesh = test::FclMesh;
+using test::fcl_mesh;
 
 fcl::Transform3d tf(const collision::Pose& p) {
   fcl::Transform3d t = fcl::Transform3d::Identity();
