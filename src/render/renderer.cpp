@@ -210,27 +210,13 @@ Renderer::Renderer(const RenderOptions& opt, const world::World& world) : p_(std
     gl::BindBuffer(GL_ARRAY_BUFFER, p.water_vbo);
     gl::BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(std::max<size_t>(1, grid.size()) * sizeof(TerrainVertex)),
                    grid.empty() ? nullptr : grid.data(), GL_STATIC_DRAW);
-    const auto st = static_cast<GLsizei>(sizeof(TerrainVertex));
-    gl::EnableVertexAttribArray(0);
-    gl::VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, st, reinterpret_cast<void*>(0));
-    gl::EnableVertexAttribArray(1);
-    gl::VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, st, reinterpret_cast<void*>(3 * sizeof(float)));
-    gl::EnableVertexAttribArray(2);
-    gl::VertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, st, reinterpret_cast<void*>(6 * sizeof(float)));
+    terrain_vertex_layout();
   }
   gl::GenVertexArrays(1, &p.crater_vao);
   gl::BindVertexArray(p.crater_vao);
   gl::GenBuffers(1, &p.crater_vbo);
   gl::BindBuffer(GL_ARRAY_BUFFER, p.crater_vbo);
-  {
-    const auto st = static_cast<GLsizei>(sizeof(TerrainVertex));
-    gl::EnableVertexAttribArray(0);
-    gl::VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, st, reinterpret_cast<void*>(0));
-    gl::EnableVertexAttribArray(1);
-    gl::VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, st, reinterpret_cast<void*>(3 * sizeof(float)));
-    gl::EnableVertexAttribArray(2);
-    gl::VertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, st, reinterpret_cast<void*>(6 * sizeof(float)));
-  }
+  terrain_vertex_layout();
   gl::GenVertexArrays(1, &p.particle_vao);
   gl::BindVertexArray(p.particle_vao);
   gl::GenBuffers(1, &p.particle_vbo);

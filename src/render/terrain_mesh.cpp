@@ -99,6 +99,11 @@ TerrainMesh::TerrainMesh(const world::Terrain& t, int chunk_cells) {
   gl::BindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo_);
   gl::BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * sizeof(uint32_t)), idx.data(),
                  GL_STATIC_DRAW);
+  terrain_vertex_layout();
+  gl::BindVertexArray(0);
+}
+
+void terrain_vertex_layout() {
   const auto stride = static_cast<GLsizei>(sizeof(TerrainVertex));
   gl::EnableVertexAttribArray(0);
   gl::VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(0));
@@ -106,7 +111,6 @@ TerrainMesh::TerrainMesh(const world::Terrain& t, int chunk_cells) {
   gl::VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(3 * sizeof(float)));
   gl::EnableVertexAttribArray(2);
   gl::VertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(6 * sizeof(float)));
-  gl::BindVertexArray(0);
 }
 
 TerrainMesh::~TerrainMesh() {

@@ -20,6 +20,9 @@ struct TerrainVertex {
   float nx, ny, nz;
   float scorch;  // 0 = untouched, 1 = blackened (crater floor)
 };
+// Declares TerrainVertex's attributes (0 position, 1 normal, 2 scorch) on the bound VAO and
+// ARRAY_BUFFER; shared by the terrain, water and crater meshes.
+void terrain_vertex_layout();
 
 struct TerrainDrawStats {
   int chunks_drawn = 0, chunks_culled = 0;

@@ -79,9 +79,13 @@ TEST_P(AppendixA, SlowAndFastTree) {
   EXPECT_EQ(outcome_of(*slow, "tree1"), "damage_fixed");
   EXPECT_EQ(outcome_of(*fast, "tree2"), "destroy_fixed");
   EXPECT_TRUE(has("damage", "object", "tree1"));
-  for (const auto& e : default_run().events)
-    if (e["event"] == "damage" && e["object"] == "tree1") EXPECT_EQ(e["to_state"], "damaged");
-    else if (e["event"] == "damage" && e["object"] == "tree2") EXPECT_EQ(e["to_state"], "stump");
+  for (const auto& e : default_run().events) {
+    if (e["event"] == "damage" && e["object"] == "tree1") {
+      EXPECT_EQ(e["to_state"], "damaged");
+    } else if (e["event"] == "damage" && e["object"] == "tree2") {
+      EXPECT_EQ(e["to_state"], "stump");
+    }
+  }
 }
 
 TEST_P(AppendixA, SlowAndFastWatertower) {
@@ -127,11 +131,17 @@ TEST_P(AppendixA, MissileHitsTank) {
   for (const auto& e : default_run().events)
     if (e["event"] == "detonation" && e["munition"] == "missile" && e["target"] == "tank8") hit = e["result"] == "entity_impact";
   EXPECT_TRUE(hit);
-  for (const auto& e : default_run().events)
-    if (e["event"] == "damage" && e["object"] == "tank8") EXPECT_EQ(e["to_state"], "wreck");
+  for (const auto& e : default_run().events) {
+    if (e["event"] == "damage" && e["object"] == "tank8") {
+      EXPECT_EQ(e["to_state"], "wreck");
+    }
+  }
   // the ground under it is untouched: no crater near tank8
-  for (const auto& e : default_run().events)
-    if (e["event"] == "crater") EXPECT_GT(std::abs(e["point"][0].get<double>() - 9062.5), 100);
+  for (const auto& e : default_run().events) {
+    if (e["event"] == "crater") {
+      EXPECT_GT(std::abs(e["point"][0].get<double>() - 9062.5), 100);
+    }
+  }
 }
 
 TEST_P(AppendixA, AutonomousVehiclesReact) {
