@@ -166,5 +166,12 @@ void respond(const world::World& w, const std::vector<Contact>& contacts, world:
 // untouched (p. 15); on the ground it makes a crater; either way objects and vehicles within the
 // blast radius are damaged, more the nearer they are.
 void detonate(const world::World& w, int munition, const Vec3& point, int hit, world::Changes& out);
+// The same for a detonation described by `d` (d.kind the munition kind, d.target the entity hit
+// or -1); d.munition, when >= 0, is the local round spent by it; -1 for another node's round.
+void detonate(const world::World& w, const world::DetonationRecord& d, world::Changes& out);
+// Figure 7 bounce of two bodies a, b (velocities m/s, masses kg) along the unit normal n from a
+// towards b, restitution thesis::kBounceRestitution: the impulse j (kg m/s) that moves a by
+// -j/ma n and b by +j/mb n; 0 when they already separate along n.
+double bounce_impulse(const Vec3& va, const Vec3& vb, double ma, double mb, const Vec3& n);
 
 }  // namespace npsnet::collision

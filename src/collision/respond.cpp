@@ -167,15 +167,13 @@ void solve_bounces(const world::World& w, const std::vector<const Contact*>& bou
   std::vector<Vec3> v(body.size()), shift(body.size(), Vec3::Zero());
   std::vector<double> first_toi(body.size(), 2.0), dt(body.size(), 0.0);
   for (size_t i = 0; i < body.size(); ++i) v[i] = ents.vel[body[i]];
-  const double e = thesis::kBounceRestitution;
   for (int sweep = 0; sweep < kImpulseSweeps; ++sweep) {
     for (const Contact* c : bounces) {
       const size_t ia = slot(c->a), ib = slot(c->b);
       const double ma = w.kinds[ents.kind[c->a]].mass_kg, mb = w.kinds[ents.kind[c->b]].mass_kg;
       const Vec3 n = bounce_normal(w, *c);
-      const double vn = (v[ia] - v[ib]).dot(n);
-      if (vn <= 0) continue;  // separating already
-      const double j = (1 + e) * vn / (1 / ma + 1 / mb);
+      const double j = bounce_impulse(v[ia], v[ib], ma, mb, n);
+      if (j <= 0) continue;  // separating already
       v[ia] -= (j / ma) * n;
       v[ib] += (j / mb) * n;
     }
@@ -213,6 +211,12 @@ void solve_bounces(const world::World& w, const std::vector<const Contact*>& bou
 
 }  // namespace
 
+double bounce_impulse(const Vec3& va, const Vec3& vb, double ma, double mb, const Vec3& n) {
+  const double vn = (va - vb).dot(n);
+  if (vn <= 0) return 0;
+  return (1 + thesis::kBounceRestitution) * vn / (1 / ma + 1 / mb);
+}
+
 void respond(const world::World& w, const std::vector<Contact>& contacts, world::Changes& out) {
   // Bounces first (solved together), so that a stop or kill of the same body this tick wins.
   std::vector<const Contact*> bounces;
@@ -238,17 +242,27 @@ void respond(const world::World& w, const std::vector<Contact>& contacts, world:
 }
 
 void detonate(const world::World& w, int munition, const Vec3& point, int hit, world::Changes& out) {
-  const auto& ents = w.ents;
-  const world::Kind& km = w.kinds[ents.kind[munition]];
-  world::EntityChange spent;
-  spent.entity = munition;
-  spent.deactivate = true;
-  spent.set_vel = true;
-  out.entities.push_back(spent);
   world::DetonationRecord rec;
-  rec.munition = munition, rec.target = hit, rec.point = point;
+  rec.munition = munition, rec.kind = w.ents.kind[munition], rec.shooter = w.ents.owner[munition];
+  rec.round = w.ents.id[munition];
+  rec.target = hit, rec.point = point;
   rec.result = hit >= 0 ? "entity_impact" : "ground_impact";
-  out.detonations.push_back(rec);
+  detonate(w, rec, out);
+}
+
+void detonate(const world::World& w, const world::DetonationRecord& d, world::Changes& out) {
+  const auto& ents = w.ents;
+  const world::Kind& km = w.kinds[d.kind];
+  const int munition = d.munition, hit = d.target;
+  const Vec3& point = d.point;
+  if (munition >= 0) {
+    world::EntityChange spent;
+    spent.entity = munition;
+    spent.deactivate = true;
+    spent.set_vel = true;
+    out.entities.push_back(spent);
+  }
+  out.detonations.push_back(d);
   if (hit >= 0) {
     // "the same round striking a tank would destroy the tank and have no effect on the ground"
     world::EntityChange k;

@@ -105,9 +105,9 @@ void Simulation::log_changes() {
   for (const auto& d : changes_.detonations) {
     auto ev = base("detonation");
     ev["point"] = vec(d.point);
-    ev["munition"] = w_.kinds[ents.kind[d.munition]].name;
-    ev["round"] = ents.id[d.munition];
-    ev["shooter"] = ents.owner[d.munition] >= 0 ? ents.id[ents.owner[d.munition]] : "";
+    ev["munition"] = w_.kinds[d.kind].name;
+    ev["round"] = d.round;
+    ev["shooter"] = d.shooter >= 0 ? ents.id[d.shooter] : "";
     ev["target"] = d.target >= 0 ? ents.id[d.target] : "";
     ev["result"] = d.result;
     log_.write(ev);
@@ -145,6 +145,7 @@ void append(world::Changes& to, const world::Changes& from) {
 }  // namespace
 
 void Simulation::inject(const world::Changes& c) { append(injected_, c); }
+void Simulation::inject_detonation(const world::DetonationRecord& d) { injected_detonations_.push_back(d); }
 
 void Simulation::tick() {
   fired_.clear();
@@ -162,13 +163,15 @@ void Simulation::tick() {
   collision::respond(w_, contacts_, changes_);
   append(changes_, injected_);
   injected_.clear();
+  for (const auto& d : injected_detonations_) collision::detonate(w_, d, changes_);
+  injected_detonations_.clear();
   for (const auto& im : impacts_) collision::detonate(w_, im.munition, im.point, -1, changes_);
   if (before_apply) before_apply(w_, changes_);
   world::apply(w_, changes_, applied_);
   log_changes();
   // Autonomous vehicles near a detonation they did not cause have been fired upon.
   for (const auto& d : changes_.detonations) {
-    const int shooter = w_.ents.owner[d.munition];
+    const int shooter = d.shooter;
     for (int e = 0; e < static_cast<int>(w_.ents.size()); ++e)
       if (w_.ents.autonomous[e] && e != shooter && (w_.ents.pos[e] - d.point).norm() < dynamics::kThreatRadiusM)
         threatened(shooter, d.point, e);

@@ -36,11 +36,15 @@ class Simulation {
   //  before_step runs first in every tick (remote entity poses, received PDUs);
   //  decides(contact) says whether this node decides a contact (the owner of the lower DIS
   //  entity id does); contacts it does not decide are left to the other node;
-  //  inject(changes) queues changes decided elsewhere (Collision, Detonation PDUs, remote
-  //  fixed-object states), applied and logged in this tick's apply step.
+  //  inject(changes) queues changes decided elsewhere (Collision PDUs, remote damage and
+  //  kinds, remote fixed-object states), applied and logged in this tick's apply step;
+  //  inject_detonation(d) queues another node's detonation (d.munition = -1): after the
+  //  injected changes, collision::detonate works out its crater and blast into this tick's
+  //  changes, applied and logged with them.
   std::function<void(world::World&)> before_step;
   std::function<bool(const collision::Contact&)> decides;
   void inject(const world::Changes& c);
+  void inject_detonation(const world::DetonationRecord& d);
 
   // Fires `munition_kind` from `shooter` at an entity or a point, logging the fire event.
   // point and target_name by value: callers pass references into the entity arrays, which grow.
@@ -69,6 +73,7 @@ class Simulation {
   std::vector<dynamics::GroundImpact> impacts_;
   std::vector<int> fired_;
   world::Changes changes_, injected_;
+  std::vector<world::DetonationRecord> injected_detonations_;
   world::Applied applied_;
 };
 

@@ -103,7 +103,7 @@ void Snapshots::before_apply(const world::World& w, const world::Changes& c) {
     snap("collision", who, ents.id[r.a], r.b_fixed ? w.fixed.id[r.b] : ents.id[r.b], pa, pb);
   }
   for (const auto& d : c.detonations) {
-    const int shooter = ents.owner[d.munition];
+    const int shooter = d.shooter;
     if (shooter < 0 || !ents.snapshots[shooter]) continue;
     // Frame ~40 m of ground around the point of impact, across the line of fire.
     Vec2 dir = (d.point - ents.pos[shooter]).head<2>();
@@ -111,7 +111,7 @@ void Snapshots::before_apply(const world::World& w, const world::Changes& c) {
     const Vec3 side(-dir.y() * 20, dir.x() * 20, 0);
     const Vec3 pa = d.target >= 0 ? world::entity_centre(w, d.target) - side : d.point - side;
     const Vec3 pb = d.target >= 0 ? world::entity_centre(w, d.target) + side : d.point + side;
-    snap("detonation", shooter, ents.id[d.munition], d.target >= 0 ? ents.id[d.target] : "ground", pa, pb);
+    snap("detonation", shooter, d.round, d.target >= 0 ? ents.id[d.target] : "ground", pa, pb);
   }
 }
 

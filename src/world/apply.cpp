@@ -23,6 +23,7 @@ void apply(World& w, const Changes& c, Applied& out) {
   for (const auto& ch : c.entities) {
     const int e = ch.entity;
     if (e < 0 || e >= static_cast<int>(ents.size())) continue;
+    if (ch.to_kind >= 0 && ch.to_kind < w.kinds.size()) ents.kind[e] = static_cast<int16_t>(ch.to_kind);
     const Kind& k = w.kinds[ents.kind[e]];
     const int last = static_cast<int>(k.states.size()) - 1;
     if (ch.to_state > ents.state[e]) {

@@ -15,6 +15,8 @@ const char* result_name(Result r);
 
 struct EntityChange {
   int entity = -1;
+  int to_kind = -1;           // -1: unchanged; else the kind the owner's Entity State names
+                              // (applied first, before to_state)
   int to_state = -1;          // -1: unchanged; states only ever move forward
   bool set_vel = false;
   Vec3 vel{0, 0, 0};          // new velocity (m/s) when set_vel
@@ -43,8 +45,13 @@ struct CollisionRecord {
   Result result_a = Result::None, result_b = Result::None;
 };
 
+// A detonation: of a local munition entity, or of another node's round (munition = -1: no
+// entity here; kind, shooter and round name say what it was).
 struct DetonationRecord {
-  int munition = -1;
+  int munition = -1;          // entity index of the round, or -1
+  int kind = -1;              // munition kind
+  int shooter = -1;           // entity index of the shooter, or -1
+  std::string round;          // the round's name in events
   int target = -1;            // entity hit, or -1 for the ground
   Vec3 point{0, 0, 0};
   std::string result;         // "entity_impact", "ground_impact"

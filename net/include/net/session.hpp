@@ -9,6 +9,9 @@
 //    caller's exercise id is used as given).
 //  * poll(visitor) drains every waiting datagram without blocking and hands each accepted PDU to
 //    the visitor (see datagram.hpp for the visitor rules); returns the number of PDUs handed.
+//  * poll_datagrams(f) drains the waiting datagrams as raw bytes, f(std::span<const uint8_t>);
+//    parse(datagram, visitor) walks one datagram (from the socket, a recording or a test) through
+//    the session's filter and counters exactly as poll does.
 #pragma once
 
 #include <array>
@@ -50,10 +53,16 @@ class Session {
   template <class Visitor>
   std::size_t poll(Visitor&& visitor) {
     std::size_t delivered = 0;
-    transport_.poll([&](std::span<const std::uint8_t> d) {
-      delivered += parser_.parse(d, counters_, visitor);
-    });
+    transport_.poll([&](std::span<const std::uint8_t> d) { delivered += parse(d, visitor); });
     return delivered;
+  }
+  template <class F>
+  std::size_t poll_datagrams(F&& on_datagram) {
+    return transport_.poll(on_datagram);
+  }
+  template <class Visitor>
+  std::size_t parse(std::span<const std::uint8_t> datagram, Visitor&& visitor) {
+    return parser_.parse(datagram, counters_, visitor);
   }
 
   // An entity id of ours: (site, application, entity).

@@ -1,0 +1,51 @@
+#include "node/bridge_options.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+
+namespace npsnet::node {
+
+double dis_timeout_from_env(double fallback) {
+  const char* v = std::getenv("NPSNET_DIS_TIMEOUT_S");
+  if (!v || !*v) return fallback;
+  char* end = nullptr;
+  const double s = std::strtod(v, &end);
+  if (end == v || *end != '\0' || !std::isfinite(s) || s <= 0 || s > 3600)
+    throw std::runtime_error(std::string("NPSNET_DIS_TIMEOUT_S='") + v +
+                             "': must be a number of seconds, more than 0 and at most 3600");
+  return s;
+}
+
+bool dis_pack_from_env() {
+  const char* v = std::getenv("NPSNET_DIS_PACK");
+  return v && std::string(v) == "1";
+}
+
+net::SessionConfig session_config(const BridgeOptions& o) {
+  if (o.app < 1 || o.app >= kCulturalAppBit)
+    throw std::runtime_error("--app " + std::to_string(o.app) + ": with --net it must be 1-32767 (32768 and up carry cultural features)");
+  if (o.site < 1 || o.site > 65535) throw std::runtime_error("--site " + std::to_string(o.site) + ": must be 1-65535");
+  if (o.exercise < 1 || o.exercise > 255) throw std::runtime_error("--exercise " + std::to_string(o.exercise) + ": must be 1-255");
+  net::SessionConfig c;
+  c.transport.url = o.url;
+  c.transport.iface = o.iface;
+  c.exercise_id = static_cast<std::uint8_t>(o.exercise);
+  c.site = static_cast<std::uint16_t>(o.site);
+  c.application = static_cast<std::uint16_t>(o.app);
+  return c;
+}
+
+net::DrThresholds dr_thresholds(double timeout_s) {
+  net::DrThresholds t;
+  t.timeout_s = timeout_s;
+  t.heartbeat_s = std::min(dis_defaults::kHeartbeatS, timeout_s * dis_defaults::kHeartbeatS / dis_defaults::kTimeoutS);
+  return t;
+}
+
+std::unique_ptr<net::Session> open_session(const BridgeOptions& o) {
+  return std::make_unique<net::Session>(session_config(o));
+}
+
+}  // namespace npsnet::node

@@ -1,0 +1,42 @@
+// The bridge's settings from the command line and the environment (shared/ARCHITECTURE.md,
+// Network): --net, --iface, --node, --exercise, --site, --app; NPSNET_DIS_TIMEOUT_S (remote
+// entity timeout, s) and NPSNET_DIS_PACK=1 (several Entity States to a datagram).
+// Every bad value is a std::runtime_error whose message names the flag or variable.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "core/constants.hpp"
+#include "net/net.hpp"
+
+namespace npsnet::node {
+
+struct BridgeOptions {
+  std::string url = "udp://239.1.2.3:3000";  // --net
+  std::string iface = "127.0.0.1";           // --iface
+  int node = 1;                              // --node: vehicles with node = N are ours
+  int exercise = 1, site = 1, app = 1;       // DIS identity (app default = node, set by caller)
+  double timeout_s = dis_defaults::kTimeoutS;  // remote entity timeout, s
+};
+
+// Application ids at or above this carry cultural features (fixed objects).
+inline constexpr std::uint16_t kCulturalAppBit = 0x8000;
+
+// NPSNET_DIS_TIMEOUT_S (seconds, > 0, <= 3600, finite), or `fallback` when unset.
+double dis_timeout_from_env(double fallback);
+// NPSNET_DIS_PACK == "1".
+bool dis_pack_from_env();
+
+// The session of `o`; throws on an identity out of range (--app 1-32767, --site 1-65535,
+// --exercise 1-255).
+net::SessionConfig session_config(const BridgeOptions& o);
+// Annex C thresholds with the timeout `timeout_s`; a timeout shorter than the default (tests)
+// shortens the heartbeat in the Annex C ratio 5:12, so that a quiet living entity never times out.
+net::DrThresholds dr_thresholds(double timeout_s);
+
+// Opens the DIS session of `o` (socket bound, group joined). Throws std::runtime_error with an
+// actionable message (bad URL, iface, identity). Done before anything is written.
+std::unique_ptr<net::Session> open_session(const BridgeOptions& o);
+
+}  // namespace npsnet::node

@@ -1,0 +1,125 @@
+#include "node/pdu_build.hpp"
+
+#include <cmath>
+
+#include "node/dis_mapping.hpp"
+
+namespace npsnet::node {
+
+namespace {
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+Eigen::Vector3d ev(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+net::Vec3f f3(const Vec3& v) { return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())}; }
+net::Marking marking_of(const std::string& id) {
+  auto mk = net::make_marking(id.substr(0, 11));
+  return mk ? mk.value() : net::Marking{};
+}
+// Velocity `v` at local point `p` in ECEF axes.
+Vec3 ecef_velocity(const world::World& w, const Vec3& p, const Vec3& v) {
+  const auto& frame = w.terrain.frame();
+  return frame.to_ecef(p + v) - frame.to_ecef(p);
+}
+}  // namespace
+
+net::KinematicState entity_truth(const world::World& w, int e) {
+  const auto& frame = w.terrain.frame();
+  net::KinematicState s;
+  const Vec3 p = w.ents.pos[e];
+  const Vec3 pe = frame.to_ecef(p);
+  s.position = ev(pe);
+  s.velocity = ev(frame.to_ecef(p + w.ents.vel[e]) - pe);
+  const Vec3 eu = frame.to_dis_euler(p, w.ents.heading_deg[e], w.ents.pitch_deg[e], w.ents.roll_deg[e]);
+  s.orientation = {eu.x(), eu.y(), eu.z()};
+  return s;
+}
+
+void fill_entity_state(const world::World& w, int e, const net::EntityId& id, const net::KinematicState& s,
+                       net::DrAlgorithm algorithm, std::uint32_t appearance, std::uint8_t exercise,
+                       net::EntityStatePdu& es) {
+  es.entity_id = id;
+  es.force_id = 1;
+  es.entity_type = to_net(w.kinds[w.ents.kind[e]].dis);
+  es.alternative_entity_type = es.entity_type;
+  es.marking = marking_of(w.ents.id[e]);
+  es.appearance = appearance;
+  net::write_kinematics(s, algorithm, es);
+  es.header.timestamp = net::relative_timestamp(w.t);
+  es.header.exercise_id = exercise;
+}
+
+void fill_cultural(const world::World& w, int o, const net::EntityId& id, net::EntityStatePdu& p) {
+  p.entity_id = id;
+  p.entity_type = to_net(w.kinds[w.fixed.kind[o]].dis);
+  p.alternative_entity_type = p.entity_type;
+  net::KinematicState s;
+  const auto& frame = w.terrain.frame();
+  s.position = ev(frame.to_ecef(w.fixed.pos[o]));
+  const Vec3 eu = frame.to_dis_euler(w.fixed.pos[o], w.fixed.heading_deg[o], 0, 0);
+  s.orientation = {eu.x(), eu.y(), eu.z()};
+  net::write_kinematics(s, net::DrAlgorithm::Static, p);
+  p.appearance = w.fixed.state[o];
+  p.marking = marking_of(w.fixed.id[o]);
+  p.header.timestamp = net::relative_timestamp(w.t);
+}
+
+net::FirePdu fire_pdu(const world::World& w, int m, const net::EntityId& firing, const net::EntityId& target,
+                      const net::EntityId& munition, const net::EventId& event) {
+  const auto& ents = w.ents;
+  net::FirePdu p;
+  p.firing_entity_id = firing;
+  p.target_entity_id = target;
+  p.munition_id = munition;
+  p.event_id = event;
+  const Vec3 pe = w.terrain.frame().to_ecef(ents.pos[m]);
+  p.location = {pe.x(), pe.y(), pe.z()};
+  p.descriptor.munition_type = to_net(w.kinds[ents.kind[m]].dis);
+  p.descriptor.warhead = dis::kWarheadHighExplosive;
+  p.descriptor.fuse = dis::kFuseContact;
+  p.descriptor.quantity = 1;
+  p.velocity = f3(ecef_velocity(w, ents.pos[m], ents.vel[m]));
+  p.range = static_cast<float>((ents.aim[m] - ents.pos[m]).norm());
+  p.header.timestamp = net::relative_timestamp(w.t);
+  return p;
+}
+
+net::DetonationPdu detonation_pdu(const world::World& w, const world::DetonationRecord& d, const net::EntityId& firing,
+                                  const net::EntityId& target, const net::EntityId& exploding,
+                                  const net::EventId& event) {
+  const int m = d.munition;
+  net::DetonationPdu p;
+  p.firing_entity_id = firing;
+  p.target_entity_id = target;
+  p.exploding_entity_id = exploding;
+  p.event_id = event;
+  const Vec3 pe = w.terrain.frame().to_ecef(d.point);
+  p.location = {pe.x(), pe.y(), pe.z()};
+  p.velocity = f3(ecef_velocity(w, d.point, w.ents.vel[m]));
+  p.descriptor.munition_type = to_net(w.kinds[w.ents.kind[m]].dis);
+  p.descriptor.warhead = dis::kWarheadHighExplosive;
+  p.descriptor.fuse = dis::kFuseContact;
+  p.descriptor.quantity = 1;
+  p.detonation_result = d.target >= 0 ? dis::kResultEntityImpact : dis::kResultGroundImpact;
+  p.header.timestamp = net::relative_timestamp(w.t);
+  return p;
+}
+
+net::CollisionPdu collision_pdu(const world::World& w, int own, const net::EntityId& issuing,
+                                const net::EntityId& colliding, const net::EventId& event, world::Result result,
+                                const Vec3& own_vel, const Vec3& point) {
+  const auto& ents = w.ents;
+  net::CollisionPdu p;
+  p.issuing_entity_id = issuing;
+  p.colliding_entity_id = colliding;
+  p.event_id = event;
+  p.collision_type = result == world::Result::Bounce ? dis::kCollisionElastic : dis::kCollisionInelastic;
+  p.velocity = f3(ecef_velocity(w, ents.pos[own], own_vel));
+  p.mass = static_cast<float>(w.kinds[ents.kind[own]].mass_kg);
+  const Vec3 d = point - ents.pos[own];
+  const double h = ents.heading_deg[own] * kDeg;
+  p.location_in_entity = {static_cast<float>(d.x() * std::sin(h) + d.y() * std::cos(h)),
+                          static_cast<float>(d.x() * std::cos(h) - d.y() * std::sin(h)), static_cast<float>(-d.z())};
+  p.header.timestamp = net::relative_timestamp(w.t);
+  return p;
+}
+
+}  // namespace npsnet::node

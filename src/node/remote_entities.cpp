@@ -1,0 +1,172 @@
+#include "node/remote_entities.hpp"
+
+#include <cmath>
+
+#include "node/dis_mapping.hpp"
+
+namespace npsnet::node {
+
+namespace {
+Vec3 vv(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+bool finite3(const Eigen::Vector3d& v) { return v.allFinite(); }
+double round3(double v) { return std::round(v * 1000.0) / 1000.0; }
+}  // namespace
+
+RemoteEntities::RemoteEntities(const net::DrThresholds& t, Simulation& sim, EventLog& log)
+    : sim_(sim), log_(log), table_(t) {
+  remote_id_.assign(sim_.world().ents.size(), net::EntityId{});
+}
+
+void RemoteEntities::grow() {
+  const size_t n = sim_.world().ents.size();
+  if (remote_id_.size() < n) remote_id_.resize(n);
+}
+
+net::EntityId RemoteEntities::id_of(int e) const {
+  return e >= 0 && static_cast<size_t>(e) < remote_id_.size() ? remote_id_[e] : net::EntityId{};
+}
+
+int RemoteEntities::index_of(const net::EntityId& id) const {
+  auto it = world_of_.find(id);
+  return it == world_of_.end() ? -1 : it->second;
+}
+
+const net::RemoteEntity* RemoteEntities::find(const net::EntityId& id) const {
+  auto i = table_.find(id);
+  return i ? &table_[*i] : nullptr;
+}
+
+nlohmann::json RemoteEntities::event(const char* type) const {
+  const auto& w = sim_.world();
+  return {{"event", type}, {"t", round3(w.t)}, {"frame", w.frame}};
+}
+
+int RemoteEntities::kind_for(int e, const net::EntityType& t) const {
+  const auto& w = sim_.world();
+  const int k = w.ents.kind[e];
+  return same_type(w.kinds[k].dis, t) ? k : vehicle_kind_for(w.kinds, t);
+}
+
+void RemoteEntities::on_entity_state(const net::EntityStatePdu& p, double now_s) {
+  grow();
+  if (!finite3(Eigen::Vector3d(p.location.x, p.location.y, p.location.z))) return;
+  const auto r = table_.apply(p, now_s);
+  if (r == net::RemoteEntityTable::ApplyResult::Joined) {
+    if (auto i = table_.find(p.entity_id)) joined(*i);
+  } else if (r == net::RemoteEntityTable::ApplyResult::Deactivated) {
+    const int e = index_of(p.entity_id);
+    if (e >= 0) sim_.world().ents.active[e] = 0, sim_.world().ents.vel[e] = Vec3::Zero();
+    return;
+  }
+  // Damage that arrives in the appearance (states only move forward).
+  const int e = index_of(p.entity_id);
+  if (e < 0) return;
+  const auto& w = sim_.world();
+  const int k = kind_for(e, p.entity_type);
+  if (k < 0) return;
+  const int to = state_from_appearance(w.kinds[k], p.appearance);
+  if (to > w.ents.state[e]) {
+    world::EntityChange ch;
+    ch.entity = e;
+    ch.to_state = to;
+    inject(ch);
+  }
+}
+
+void RemoteEntities::inject(const world::EntityChange& ch) {
+  inject_.clear();
+  inject_.entities.push_back(ch);
+  sim_.inject(inject_);
+  inject_.clear();
+}
+
+void RemoteEntities::on_update(const net::EntityStateUpdatePdu& p, double now_s) { table_.apply(p, now_s); }
+
+void RemoteEntities::joined(std::size_t ri) {
+  world::World& w = sim_.world();
+  auto& ents = w.ents;
+  const net::RemoteEntity& r = table_[ri];
+  const std::string marking = net::marking_text(r.marking);
+  int e = index_of(r.id);
+  int kind = e >= 0 ? kind_for(e, r.type) : -1;
+  if (e < 0) {
+    // A scenario vehicle of another node with this marking, not yet bound to an entity id.
+    for (size_t i = 0; i < ents.size(); ++i)
+      if (!ents.local[i] && ents.id[i] == marking && remote_id_[i].site == 0 &&
+          w.kinds[ents.kind[i]].mobility != world::Mobility::Munition) {
+        e = static_cast<int>(i);
+        break;
+      }
+    if (e >= 0) {
+      kind = kind_for(e, r.type);
+      if (kind < 0) kind = ents.kind[e];
+      if (kind != ents.kind[e]) {  // the owner says it is another type: show that kind
+        world::EntityChange ch;
+        ch.entity = e;
+        ch.to_kind = kind;
+        inject(ch);
+      }
+    } else {
+      kind = vehicle_kind_for(w.kinds, r.type);
+      if (kind < 0) return;  // no vehicle kind at all in this kinds file
+      const std::string name = marking.empty() ? id_text(r.id) : marking;
+      e = ents.add(name, kind, Vec3::Zero(), 0.f, static_cast<float>(w.kinds[kind].radius_m));
+      ents.node[e] = -1;
+      grow();
+    }
+    remote_id_[e] = r.id;
+    world_of_[r.id] = e;
+  }
+  ents.local[e] = 0;
+  ents.active[e] = 1;
+  ents.autonomous[e] = 0;
+  if (kind < 0) kind = ents.kind[e];
+  const bool known_type = same_type(w.kinds[kind].dis, r.type);
+  auto ev = event("entity_joined");
+  ev["id"] = ents.id[e];
+  ev["entity"] = id_text(r.id);
+  ev["marking"] = marking;
+  ev["kind"] = known_type ? w.kinds[kind].name : type_text(r.type);
+  if (!known_type) ev["model"] = w.kinds[kind].name;
+  log_.write(ev);
+}
+
+void RemoteEntities::expire(double now_s) {
+  world::World& w = sim_.world();
+  table_.expire(now_s, [&](const net::RemoteEntity& r) {
+    const int e = index_of(r.id);
+    if (e < 0) return;
+    w.ents.active[e] = 0;
+    w.ents.vel[e] = Vec3::Zero();
+    auto ev = event("entity_timeout");
+    ev["id"] = w.ents.id[e];
+    ev["entity"] = id_text(r.id);
+    ev["marking"] = net::marking_text(r.marking);
+    ev["kind"] = w.kinds[w.ents.kind[e]].name;
+    log_.write(ev);
+  });
+}
+
+void RemoteEntities::set_poses(double now_s) {
+  world::World& w = sim_.world();
+  const auto& frame = w.terrain.frame();
+  auto& ents = w.ents;
+  for (std::size_t i = 0; i < table_.size(); ++i) {
+    const net::RemoteEntity& r = table_[i];
+    const int e = index_of(r.id);
+    if (e < 0 || !ents.active[e]) continue;
+    const net::Pose pose = table_.displayed_pose(i, now_s);
+    if (!finite3(pose.position)) continue;
+    const Vec3 p = frame.from_ecef(vv(pose.position));
+    const Vec3 hpr = frame.from_dis_euler(p, Vec3(pose.orientation.psi, pose.orientation.theta, pose.orientation.phi));
+    const Vec3 ahead = frame.from_ecef(vv(pose.position + r.state.velocity));
+    if (!std::isfinite(p.x()) || !std::isfinite(hpr.x())) continue;
+    ents.pos[e] = p;
+    ents.vel[e] = ahead - p;
+    ents.heading_deg[e] = static_cast<float>(hpr.x());
+    ents.pitch_deg[e] = static_cast<float>(hpr.y());
+    ents.roll_deg[e] = static_cast<float>(hpr.z());
+  }
+}
+
+}  // namespace npsnet::node

@@ -1,0 +1,69 @@
+// Remote-entity bookkeeping of the bridge: vehicles of other nodes, tied to world entities.
+//  * Vehicles of other nodes start local = 0 and inactive; their first Entity State activates
+//    them (matched by marking; an unknown marking adds an entity of the kind whose DIS type
+//    matches, or the generic kind of its domain; dis_mapping.hpp). A scenario vehicle whose owner
+//    sends another DIS type takes the kind of that type through world::Changes (to_kind).
+//  * Each tick, before dynamics, a remote entity's pose and velocity are set from
+//    RemoteEntityTable::displayed_pose (the "remote entity states -> World" stage of
+//    shared/ARCHITECTURE.md; only this stage writes remote poses and their active flag).
+//  * No update for the DR timeout deactivates it. Events entity_joined / entity_timeout: id
+//    (marking), entity "site:app:entity", marking, kind (or the DIS type when unknown, with
+//    model = the kind shown).
+//  * Damage from the owner's appearance goes to world::Changes (states only move forward).
+// Ids: world entities keep their remote id across timeouts, so a rejoin reuses the entity.
+#pragma once
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "net/net.hpp"
+#include "node/event_log.hpp"
+#include "node/simulation.hpp"
+
+namespace npsnet::node {
+
+class RemoteEntities {
+ public:
+  RemoteEntities(const net::DrThresholds& t, Simulation& sim, EventLog& log);
+
+  // The remote id of world entity e (site 0: not a remote entity).
+  net::EntityId id_of(int e) const;
+  bool is_remote(int e) const { return id_of(e).site != 0; }
+  // World index of a remote id, or -1.
+  int index_of(const net::EntityId& id) const;
+  // The table entry of a remote id, or nullptr.
+  const net::RemoteEntity* find(const net::EntityId& id) const;
+  std::size_t size() const { return table_.size(); }
+  const net::DrThresholds& thresholds() const { return table_.thresholds(); }
+
+  // A vehicle's Entity State (not a cultural feature, not a munition) arriving at now_s.
+  void on_entity_state(const net::EntityStatePdu& p, double now_s);
+  void on_update(const net::EntityStateUpdatePdu& p, double now_s);
+  // Deactivates entities silent for longer than the timeout (entity_timeout events).
+  void expire(double now_s);
+  // Sets the pose and velocity of every active remote entity to its displayed pose at now_s.
+  void set_poses(double now_s);
+
+ private:
+  void joined(std::size_t table_index);
+  // The kind a remote entity is shown as: its own when the owner's type matches, else the kind
+  // of that type.
+  int kind_for(int e, const net::EntityType& t) const;
+  void grow();
+  void inject(const world::EntityChange& ch);  // queued for this tick's world::apply
+  nlohmann::json event(const char* type) const;
+
+  Simulation& sim_;
+  EventLog& log_;
+  net::RemoteEntityTable table_;
+  struct IdHash {
+    std::size_t operator()(const net::EntityId& e) const noexcept {
+      return (std::size_t{e.site} << 32) ^ (std::size_t{e.application} << 16) ^ e.entity;
+    }
+  };
+  std::unordered_map<net::EntityId, int, IdHash> world_of_;
+  std::vector<net::EntityId> remote_id_;  // per world entity; site 0 = not remote
+  world::Changes inject_;                 // reused
+};
+
+}  // namespace npsnet::node
