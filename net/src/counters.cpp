@@ -50,6 +50,9 @@ std::string Counters::summary() const {
     }
   if (!any) s += " none";
   s += " datagrams=" + std::to_string(datagrams_sent) + " failures=" + std::to_string(send_failures);
+  if (aoi_joins || aoi_join_failures)
+    s += " | aoi groups=" + std::to_string(aoi_groups_held) + " joins=" + std::to_string(aoi_joins) +
+         " leaves=" + std::to_string(aoi_leaves) + " join_failures=" + std::to_string(aoi_join_failures);
   return s;
 }
 

@@ -9,8 +9,8 @@ Session::Session(const SessionConfig& config)
       parser_(ReceiveFilter{config.filter_exercise, config.exercise_id, config.ignore_own_echo,
                             config.site, config.application}) {}
 
-bool Session::send_raw(std::span<const std::uint8_t> bytes, std::uint8_t pdu_type) noexcept {
-  if (!transport_.send(bytes)) {
+bool Session::send_raw(std::uint32_t group, std::span<const std::uint8_t> bytes, std::uint8_t pdu_type) noexcept {
+  if (!transmit(group, bytes)) {
     ++counters_.send_failures;
     return false;
   }
@@ -19,9 +19,9 @@ bool Session::send_raw(std::span<const std::uint8_t> bytes, std::uint8_t pdu_typ
   return true;
 }
 
-bool Session::send(const DatagramBuilder& datagram) noexcept {
+bool Session::send_to(std::uint32_t group, const DatagramBuilder& datagram) noexcept {
   if (datagram.empty()) return false;
-  if (!transport_.send(datagram.bytes())) {
+  if (!transmit(group, datagram.bytes())) {
     ++counters_.send_failures;
     return false;
   }
@@ -35,6 +35,27 @@ bool Session::send(const DatagramBuilder& datagram) noexcept {
     off += len;
   }
   return true;
+}
+
+}  // namespace net
+
+namespace net {
+
+bool Session::join_group(std::uint32_t group) noexcept {
+  if (!transport_.join(group)) {
+    ++counters_.aoi_join_failures;
+    return false;
+  }
+  ++counters_.aoi_joins;
+  counters_.aoi_groups_held = transport_.groups_joined();
+  return true;
+}
+
+bool Session::leave_group(std::uint32_t group) noexcept {
+  const bool ok = transport_.leave(group);
+  ++counters_.aoi_leaves;
+  counters_.aoi_groups_held = transport_.groups_joined();
+  return ok;
 }
 
 }  // namespace net

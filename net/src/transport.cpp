@@ -7,6 +7,10 @@
 #include <array>
 #include <asio.hpp>
 #include <charconv>
+#include <unordered_map>
+#include <vector>
+
+#include <netinet/in.h>
 #include <stdexcept>
 
 namespace net {
@@ -60,12 +64,20 @@ Result<UdpUrl, std::string> parse_udp_url(std::string_view url) {
 
 struct UdpTransport::Impl {
   asio::io_context io;
-  asio::ip::udp::socket socket{io};
+  std::vector<asio::ip::udp::socket> sockets;  // [0] sends; all receive
   asio::ip::udp::endpoint destination;
+  asio::ip::address_v4 iface_addr;
   UdpUrl url;
   std::string iface;
+  std::string where;
   std::string last_error;
+  TransportConfig config;
+  std::unordered_map<std::uint32_t, std::size_t> joined;  // group -> socket index
+  std::vector<std::size_t> joined_per_socket;
+  std::size_t next_rx = 0;
   std::array<std::uint8_t, 65536> buffer{};
+
+  asio::ip::udp::socket& open_socket();  // throws
 };
 
 namespace {
@@ -74,19 +86,69 @@ namespace {
   throw std::runtime_error(what + ": " + ec.message());
 }
 
+// Only the groups this socket joined (Linux: otherwise a socket bound to 0.0.0.0 hears every
+// group any socket of the host joined on that port).
+void hear_only_own_groups(asio::ip::udp::socket& s, asio::error_code& ec) {
+#ifdef IP_MULTICAST_ALL
+  const int off = 0;
+  if (::setsockopt(s.native_handle(), IPPROTO_IP, IP_MULTICAST_ALL, &off, sizeof off) != 0)
+    ec = asio::error_code(errno, asio::error::get_system_category());
+#else
+  (void)s, (void)ec;
+#endif
+}
+
 }  // namespace
+
+asio::ip::udp::socket& UdpTransport::Impl::open_socket() {
+  asio::error_code ec;
+  asio::ip::udp::socket s(io);
+  s.open(asio::ip::udp::v4(), ec);
+  if (ec) fail("cannot open UDP socket for " + where, ec);
+  s.set_option(asio::socket_base::reuse_address(true), ec);
+  if (ec) fail("cannot set SO_REUSEADDR for " + where, ec);
+  const auto addr = destination.address().to_v4();
+  asio::ip::udp::endpoint bind_to(asio::ip::address_v4::any(), url.port);
+  if (url.mode == UdpMode::Multicast && config.join_destination) bind_to = asio::ip::udp::endpoint(addr, url.port);
+  s.bind(bind_to, ec);
+  if (ec) fail("cannot bind UDP port " + std::to_string(url.port) + " for " + where, ec);
+  if (url.mode == UdpMode::Multicast) {
+    if (config.join_destination) {
+      s.set_option(asio::ip::multicast::join_group(addr, iface_addr), ec);
+      if (ec) fail("cannot join multicast group for " + where + " (is " + iface +
+                       " an address of this host?)", ec);
+    } else {
+      hear_only_own_groups(s, ec);
+      if (ec) fail("cannot turn IP_MULTICAST_ALL off for " + where, ec);
+    }
+    s.set_option(asio::ip::multicast::outbound_interface(iface_addr), ec);
+    if (ec) fail("cannot set IP_MULTICAST_IF for " + where + " (is " + iface + " an address of this host?)", ec);
+    s.set_option(asio::ip::multicast::hops(config.multicast_ttl), ec);
+    if (ec) fail("cannot set multicast TTL for " + where, ec);
+    s.set_option(asio::ip::multicast::enable_loopback(config.multicast_loopback), ec);
+    if (ec) fail("cannot enable multicast loopback for " + where, ec);
+  } else if (url.mode == UdpMode::Broadcast) {
+    s.set_option(asio::socket_base::broadcast(true), ec);
+    if (ec) fail("cannot set SO_BROADCAST for " + where, ec);
+  }
+  s.non_blocking(true, ec);
+  if (ec) fail("cannot make the socket non-blocking for " + where, ec);
+  joined_per_socket.push_back(0);
+  return sockets.emplace_back(std::move(s));
+}
 
 UdpTransport::UdpTransport(const TransportConfig& config) : impl_(std::make_unique<Impl>()) {
   auto parsed = parse_udp_url(config.url);
   if (!parsed) throw std::runtime_error(parsed.error());
   Impl& m = *impl_;
+  m.config = config;
   m.url = parsed.value();
   if (config.mode) m.url.mode = *config.mode;
   m.iface = config.iface;
   max_per_poll_ = config.max_datagrams_per_poll == 0 ? 1 : config.max_datagrams_per_poll;
 
   asio::error_code ec;
-  const auto iface = asio::ip::make_address_v4(config.iface, ec);
+  m.iface_addr = asio::ip::make_address_v4(config.iface, ec);
   if (ec)
     throw std::runtime_error("interface address \"" + config.iface +
                              "\" is not a dotted IPv4 address (give the local address to send "
@@ -95,71 +157,111 @@ UdpTransport::UdpTransport(const TransportConfig& config) : impl_(std::make_uniq
   if (m.url.mode == UdpMode::Multicast && !addr.is_multicast())
     throw std::runtime_error("network URL \"" + config.url + "\": " + m.url.address +
                              " is not a multicast group (224.0.0.0/4)");
+  if (config.multicast_ttl < 1 || config.multicast_ttl > 255)
+    throw std::runtime_error("multicast TTL " + std::to_string(config.multicast_ttl) + " must be 1..255");
   m.destination = asio::ip::udp::endpoint(addr, m.url.port);
-
-  const std::string where = std::string(to_string(m.url.mode)) + " " + m.url.address + ":" +
-                            std::to_string(m.url.port) + " on " + config.iface;
-  m.socket.open(asio::ip::udp::v4(), ec);
-  if (ec) fail("cannot open UDP socket for " + where, ec);
-  m.socket.set_option(asio::socket_base::reuse_address(true), ec);
-  if (ec) fail("cannot set SO_REUSEADDR for " + where, ec);
-
-  asio::ip::udp::endpoint bind_to(asio::ip::address_v4::any(), m.url.port);
-  if (m.url.mode == UdpMode::Multicast) bind_to = asio::ip::udp::endpoint(addr, m.url.port);
-  m.socket.bind(bind_to, ec);
-  if (ec) fail("cannot bind UDP port " + std::to_string(m.url.port) + " for " + where, ec);
-
-  if (m.url.mode == UdpMode::Multicast) {
-    m.socket.set_option(asio::ip::multicast::join_group(addr, iface), ec);
-    if (ec) fail("cannot join multicast group for " + where + " (is " + config.iface +
-                     " an address of this host?)", ec);
-    m.socket.set_option(asio::ip::multicast::outbound_interface(iface), ec);
-    if (ec) fail("cannot set IP_MULTICAST_IF for " + where, ec);
-    m.socket.set_option(asio::ip::multicast::hops(config.multicast_ttl), ec);
-    if (ec) fail("cannot set multicast TTL for " + where, ec);
-    m.socket.set_option(asio::ip::multicast::enable_loopback(config.multicast_loopback), ec);
-    if (ec) fail("cannot enable multicast loopback for " + where, ec);
-  } else if (m.url.mode == UdpMode::Broadcast) {
-    m.socket.set_option(asio::socket_base::broadcast(true), ec);
-    if (ec) fail("cannot set SO_BROADCAST for " + where, ec);
-  }
-  m.socket.non_blocking(true, ec);
-  if (ec) fail("cannot make the socket non-blocking for " + where, ec);
+  m.where = std::string(to_string(m.url.mode)) + " " + m.url.address + ":" +
+            std::to_string(m.url.port) + " on " + config.iface;
+  m.open_socket();
 }
 
 UdpTransport::~UdpTransport() = default;
 UdpTransport::UdpTransport(UdpTransport&&) noexcept = default;
 UdpTransport& UdpTransport::operator=(UdpTransport&&) noexcept = default;
 
-bool UdpTransport::send(std::span<const std::uint8_t> datagram) noexcept {
+namespace {
+bool send_on(asio::ip::udp::socket& s, const asio::ip::udp::endpoint& to, std::span<const std::uint8_t> d,
+             std::string& last_error) noexcept {
   asio::error_code ec;
-  impl_->socket.send_to(asio::buffer(datagram.data(), datagram.size()), impl_->destination, 0, ec);
+  s.send_to(asio::buffer(d.data(), d.size()), to, 0, ec);
+  if (!ec) return true;
+  last_error = "send to " + to.address().to_string() + ":" + std::to_string(to.port()) + " failed: " + ec.message();
+  return false;
+}
+}  // namespace
+
+bool UdpTransport::send(std::span<const std::uint8_t> datagram) noexcept {
+  return send_on(impl_->sockets.front(), impl_->destination, datagram, impl_->last_error);
+}
+
+bool UdpTransport::send_to(std::uint32_t group, std::span<const std::uint8_t> datagram) noexcept {
+  const asio::ip::udp::endpoint to(asio::ip::address_v4(group), impl_->url.port);
+  return send_on(impl_->sockets.front(), to, datagram, impl_->last_error);
+}
+
+bool UdpTransport::join(std::uint32_t group) noexcept {
+  Impl& m = *impl_;
+  const asio::ip::address_v4 g(group);
+  if (m.config.join_destination || m.url.mode != UdpMode::Multicast || !g.is_multicast()) {
+    m.last_error = "join " + g.to_string() + ": only a many-groups multicast transport joins groups";
+    return false;
+  }
+  if (m.joined.count(group)) return true;
+  asio::error_code ec;
+  for (std::size_t i = 0;; ++i) {
+    if (i == m.sockets.size()) {
+      try {
+        m.open_socket();
+      } catch (const std::exception& e) {
+        m.last_error = std::string("join ") + g.to_string() + ": " + e.what();
+        return false;
+      }
+    }
+    m.sockets[i].set_option(asio::ip::multicast::join_group(g, m.iface_addr), ec);
+    if (!ec) {
+      m.joined.emplace(group, i);
+      ++m.joined_per_socket[i];
+      return true;
+    }
+    // The per-socket cap (igmp_max_memberships): try the next socket, or a new one.
+    if (ec != asio::error::no_buffer_space || m.joined_per_socket[i] == 0) break;
+  }
+  m.last_error = "join " + g.to_string() + " on " + m.iface + ": " + ec.message();
+  return false;
+}
+
+bool UdpTransport::leave(std::uint32_t group) noexcept {
+  Impl& m = *impl_;
+  auto it = m.joined.find(group);
+  if (it == m.joined.end()) return false;
+  asio::error_code ec;
+  m.sockets[it->second].set_option(asio::ip::multicast::leave_group(asio::ip::address_v4(group), m.iface_addr), ec);
+  --m.joined_per_socket[it->second];
+  m.joined.erase(it);
   if (ec) {
-    impl_->last_error = "send to " + impl_->url.address + ":" + std::to_string(impl_->url.port) +
-                        " failed: " + ec.message();
+    m.last_error = "leave " + asio::ip::address_v4(group).to_string() + ": " + ec.message();
     return false;
   }
   return true;
 }
 
+std::size_t UdpTransport::groups_joined() const noexcept { return impl_->joined.size(); }
+std::size_t UdpTransport::socket_count() const noexcept { return impl_->sockets.size(); }
+
 std::optional<std::span<const std::uint8_t>> UdpTransport::receive() noexcept {
-  asio::error_code ec;
-  asio::ip::udp::endpoint from;
-  const std::size_t n =
-      impl_->socket.receive_from(asio::buffer(impl_->buffer), from, 0, ec);
-  if (ec) {
-    if (ec != asio::error::would_block && ec != asio::error::try_again)
-      impl_->last_error = "receive failed: " + ec.message();
-    return std::nullopt;
+  Impl& m = *impl_;
+  const std::size_t n_sockets = m.sockets.size();
+  for (std::size_t k = 0; k < n_sockets; ++k) {
+    const std::size_t i = (m.next_rx + k) % n_sockets;
+    asio::error_code ec;
+    asio::ip::udp::endpoint from;
+    const std::size_t n = m.sockets[i].receive_from(asio::buffer(m.buffer), from, 0, ec);
+    if (ec) {
+      if (ec != asio::error::would_block && ec != asio::error::try_again)
+        m.last_error = "receive failed: " + ec.message();
+      continue;
+    }
+    m.next_rx = i;  // drain this socket first next time
+    return std::span<const std::uint8_t>(m.buffer.data(), n);
   }
-  return std::span<const std::uint8_t>(impl_->buffer.data(), n);
+  return std::nullopt;
 }
 
 const UdpUrl& UdpTransport::destination() const noexcept { return impl_->url; }
 const std::string& UdpTransport::iface() const noexcept { return impl_->iface; }
 std::uint16_t UdpTransport::local_port() const noexcept {
   asio::error_code ec;
-  auto ep = impl_->socket.local_endpoint(ec);
+  auto ep = impl_->sockets.front().local_endpoint(ec);
   return ec ? 0 : ep.port();
 }
 const std::string& UdpTransport::last_error() const noexcept { return impl_->last_error; }

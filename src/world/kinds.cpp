@@ -34,6 +34,17 @@ double table2_limit_kmh(Mobility m) {
     default: return 0;
   }
 }
+// What a vehicle must see, for the area of interest (--aoi), when its kind does not say:
+// tank gunnery and ground sensors reach a few km, a ship's radar horizon about 10 km, an
+// aircraft's air-to-ground sensors about 20 km.
+double default_sensor_range_m(Mobility m) {
+  switch (m) {
+    case Mobility::Ground: return 5000.0;
+    case Mobility::Ship: return 10000.0;
+    case Mobility::Air: return 20000.0;
+    default: return 0;
+  }
+}
 }  // namespace
 
 KindTable KindTable::load(const std::filesystem::path& file, ModelLibrary& models) {
@@ -54,7 +65,7 @@ KindTable KindTable::load(const std::filesystem::path& file, ModelLibrary& model
     const std::string p = name + ".";
     r.unknown_keys(*t, p, {"mobility", "mass_kg", "radius_m", "states", "models", "explosive", "max_speed_kmh",
                            "dis_type", "blast_radius_m", "crater_radius_m", "crater_depth_m", "rounds", "fuel_l", "resistance",
-                           "tiers"});
+                           "tiers", "sensor_range_m"});
     Kind k;
     k.name = name;
     if (auto m = r.string(*t, "mobility", p + "mobility", true, tl)) {
@@ -112,6 +123,8 @@ KindTable KindTable::load(const std::filesystem::path& file, ModelLibrary& model
     k.crater_depth_m = r.number(*t, "crater_depth_m", p + "crater_depth_m", false, tl).value_or(0);
     k.rounds = static_cast<int>(r.number(*t, "rounds", p + "rounds", false, tl).value_or(0));
     k.fuel_l = r.number(*t, "fuel_l", p + "fuel_l", false, tl).value_or(0);
+    k.sensor_range_m = r.number(*t, "sensor_range_m", p + "sensor_range_m", false, tl).value_or(default_sensor_range_m(k.mobility));
+    if (!(k.sensor_range_m >= 0)) r.problem(t->get("sensor_range_m"), p + "sensor_range_m", "must not be negative");
     k.resistance = r.number(*t, "resistance", p + "resistance", false, tl).value_or(1.0);
     if (k.resistance <= 0) r.problem(t->get("resistance"), p + "resistance", "must be positive");
     if (auto tiers = r.strings(*t, "tiers", p + "tiers", false, tl)) {

@@ -40,6 +40,7 @@ struct Kind {
   // vehicles only
   int rounds = 0;                // rounds carried
   double fuel_l = 0;
+  double sensor_range_m = 0;     // area of interest (--aoi): default ground 5 km, ship 10 km, air 20 km
   double height_m = 0;           // top of the model above ground (from the intact model)
   // fixed objects: momentum scale they withstand (Figure 8 constants x resistance)
   double resistance = 1;

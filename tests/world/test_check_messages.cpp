@@ -131,6 +131,27 @@ TEST(CheckMessages, NegativeMassInKinds) {
   }
 }
 
+TEST(CheckMessages, SensorRangeInKinds) {
+  const auto models = world::default_kinds_file().parent_path();
+  auto kind = [&](const std::string& extra) {
+    return "[jeep]\nmobility = \"ground\"\nmass_kg = 2500.0\nstates = [\"intact\"]\nmodels = [\"" +
+           (models / "hmmwv.obj").string() + "\"]\ndis_type = [1,1,225,6,1,0,0]\n" + extra;
+  };
+  world::ModelLibrary lib;
+  // Not given: the default of the kind's mobility (ground 5 km); given: as written.
+  EXPECT_EQ(world::KindTable::load(test::write_file("k1.toml", kind("")), lib)[0].sensor_range_m, 5000.0);
+  EXPECT_EQ(world::KindTable::load(test::write_file("k2.toml", kind("sensor_range_m = 7500.0\n")), lib)[0].sensor_range_m,
+            7500.0);
+  const auto f = test::write_file("k3.toml", kind("sensor_range_m = -1.0\n")).string();
+  try {
+    (void)world::KindTable::load(f, lib);
+    FAIL() << "negative sensor range accepted";
+  } catch (const world::InputError& e) {
+    ASSERT_EQ(e.problems().size(), 1u);
+    EXPECT_EQ(e.problems()[0].str(), f + ":7: jeep.sensor_range_m: must not be negative");
+  }
+}
+
 TEST(CheckMessages, ObjectsCsvLineErrors) {
   const auto f = test::write_file("objs.csv", "id,kind,x_m,y_m,heading_deg\nT1,tree,150,150,0\nT1,tree,160,150,0\n"
                                               "T2,oak,150,150,0\nT3,tree,nan,150,0\nT4,tree,500,150,0\nT5,tree,10,10,0\n").string();

@@ -26,6 +26,13 @@ struct Counters {
   std::array<std::uint64_t, 256> sent{};         // by PDU type
   std::uint64_t datagrams_sent = 0;
   std::uint64_t send_failures = 0;
+  // Area of interest (Session::join_group / leave_group): groups joined and left so far, the
+  // groups held now, joins the kernel refused.
+  std::uint64_t aoi_joins = 0;
+  std::uint64_t aoi_leaves = 0;
+  std::uint64_t aoi_groups_held = 0;
+  std::uint64_t aoi_join_failures = 0;
+  std::uint64_t bytes_received = 0;              // datagram payload octets
 
   std::uint64_t decoded_total() const noexcept;
   std::uint64_t rejected_total() const noexcept;
@@ -38,6 +45,8 @@ struct Counters {
   // One line, zero entries left out, e.g.
   // "datagrams 3 pdus 5 | decoded entity_state=2 fire=1 | skipped unknown_type=1 version=0 |
   //  rejected length_exceeds_data=1 | ignored own_echo=0 other_exercise=0 | sent entity_state=4"
+  // followed, once a group was joined through the area of interest, by
+  // " | aoi groups=12 joins=15 leaves=3 join_failures=0".
   std::string summary() const;
 };
 

@@ -62,6 +62,7 @@ class DatagramParser {
   template <class Visitor>
   std::size_t parse(std::span<const std::uint8_t> datagram, Counters& counters, Visitor&& visitor) {
     ++counters.datagrams_received;
+    counters.bytes_received += datagram.size();
     std::size_t offset = 0, delivered = 0;
     while (offset < datagram.size()) {
       const Step s = step(datagram.subspan(offset), counters);

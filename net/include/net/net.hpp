@@ -1,4 +1,5 @@
 // net/net.hpp — the whole DIS 7 networking library of the NPSNET node, one include.
+//   aoi.hpp            area-of-interest cells -> multicast groups, joins with hysteresis
 //   pdu.hpp            wire structs of Entity State, Fire, Detonation, Collision, ES Update
 //   codec.hpp          encode / decode one PDU, byte-exact; DecodeError reasons
 //   datagram.hpp       walk several PDUs in a datagram (filtering, counting); pack a datagram
@@ -40,6 +41,7 @@
 //   session.counters().summary() says what was received, rejected, ignored and sent.
 #pragma once
 
+#include "net/aoi.hpp"
 #include "net/codec.hpp"
 #include "net/counters.hpp"
 #include "net/datagram.hpp"

@@ -7,6 +7,9 @@
 //    send_failures). The caller sets ids, timestamp and the rest of the header.
 //  * send(builder) sends a datagram packed with DatagramBuilder (counted as one datagram; the
 //    caller's exercise id is used as given).
+//  * send_to(group, pdu) / send_to(group, builder): the same, to an area-of-interest group
+//    (IPv4 host order) instead of the configured destination.
+//  * join_group / leave_group: the transport's join/leave, counted in counters().aoi_*.
 //  * poll(visitor) drains every waiting datagram without blocking and hands each accepted PDU to
 //    the visitor (see datagram.hpp for the visitor rules); returns the number of PDUs handed.
 //  * poll_datagrams(f) drains the waiting datagrams as raw bytes, f(std::span<const uint8_t>);
@@ -39,16 +42,27 @@ class Session {
 
   template <class Pdu>
   bool send(const Pdu& pdu) noexcept {
+    return send_to(kDestination, pdu);
+  }
+  bool send(const DatagramBuilder& datagram) noexcept { return send_to(kDestination, datagram); }
+
+  // group 0 (kDestination) = the configured destination.
+  template <class Pdu>
+  bool send_to(std::uint32_t group, const Pdu& pdu) noexcept {
     auto r = encode(pdu, std::span<std::uint8_t>(buffer_));
     if (!r) {
       ++counters_.send_failures;
       return false;
     }
     buffer_[1] = config_.exercise_id;
-    return send_raw(std::span<const std::uint8_t>(buffer_.data(), r.value()),
+    return send_raw(group, std::span<const std::uint8_t>(buffer_.data(), r.value()),
                     static_cast<std::uint8_t>(buffer_[2]));
   }
-  bool send(const DatagramBuilder& datagram) noexcept;
+  bool send_to(std::uint32_t group, const DatagramBuilder& datagram) noexcept;
+
+  bool join_group(std::uint32_t group) noexcept;
+  bool leave_group(std::uint32_t group) noexcept;
+  static constexpr std::uint32_t kDestination = 0;
 
   template <class Visitor>
   std::size_t poll(Visitor&& visitor) {
@@ -75,7 +89,10 @@ class Session {
   UdpTransport& transport() noexcept { return transport_; }
 
  private:
-  bool send_raw(std::span<const std::uint8_t> bytes, std::uint8_t pdu_type) noexcept;
+  bool send_raw(std::uint32_t group, std::span<const std::uint8_t> bytes, std::uint8_t pdu_type) noexcept;
+  bool transmit(std::uint32_t group, std::span<const std::uint8_t> bytes) noexcept {
+    return group == kDestination ? transport_.send(bytes) : transport_.send_to(group, bytes);
+  }
 
   SessionConfig config_;
   UdpTransport transport_;

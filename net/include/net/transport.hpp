@@ -12,6 +12,13 @@
 //  * Construction throws std::runtime_error with an actionable message (bad URL, bad iface,
 //    bind/join failure). After that nothing throws: send() returns false on failure (the
 //    reason in last_error()), poll() drains what has arrived without blocking.
+//  * Many groups (area of interest, `join_destination = false`): the socket is bound to
+//    0.0.0.0:PORT with IP_MULTICAST_ALL off, so it hears only the groups this transport joined
+//    itself with join(group) on `iface` (not those other processes of the host joined); nothing
+//    is joined at construction. The kernel caps the groups of one socket
+//    (net.ipv4.igmp_max_memberships, 20 by default): when a join hits that cap, the transport
+//    opens one more receive socket on the same port and joins there; send_to() always leaves
+//    from the first socket. receive() drains the sockets in turn.
 //  * Nothing here allocates per call: one receive buffer of 65536 octets is kept.
 #pragma once
 
@@ -45,7 +52,8 @@ struct TransportConfig {
   std::string url{kDefaultNetUrl};
   std::string iface{kDefaultIface};  // local IPv4 address multicast is sent and joined on
   std::optional<UdpMode> mode;       // overrides the mode guessed from the address
-  int multicast_ttl = 1;
+  int multicast_ttl = 1;             // 1 = the LAN; more to cross multicast routers
+  bool join_destination = true;      // false: many groups, join()/leave() them (see above)
   bool multicast_loopback = true;
   std::size_t max_datagrams_per_poll = 4096;  // bounds one poll() call
 };
@@ -61,6 +69,16 @@ class UdpTransport {
 
   // Sends one datagram to the configured destination. Non-blocking; false on failure.
   bool send(std::span<const std::uint8_t> datagram) noexcept;
+
+  // Sends one datagram to group:PORT (IPv4 host order), e.g. an area-of-interest cell's group.
+  bool send_to(std::uint32_t group, std::span<const std::uint8_t> datagram) noexcept;
+
+  // Many-groups mode only: joins / leaves `group` (IPv4 host order) on the iface. false (reason
+  // in last_error()) when the kernel refuses or the transport was made with join_destination.
+  bool join(std::uint32_t group) noexcept;
+  bool leave(std::uint32_t group) noexcept;
+  std::size_t groups_joined() const noexcept;
+  std::size_t socket_count() const noexcept;
 
   // Next datagram already received, or empty when none is waiting (never blocks). The span
   // stays valid until the next receive()/poll().
