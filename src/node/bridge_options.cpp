@@ -34,6 +34,15 @@ net::SessionConfig session_config(const BridgeOptions& o) {
   c.exercise_id = static_cast<std::uint8_t>(o.exercise);
   c.site = static_cast<std::uint16_t>(o.site);
   c.application = static_cast<std::uint16_t>(o.app);
+  if (o.ttl < 1 || o.ttl > 255) throw std::runtime_error("--ttl " + std::to_string(o.ttl) + ": must be 1-255");
+  c.transport.multicast_ttl = o.ttl;
+  if (o.aoi_cell_m > 0) {
+    auto u = net::parse_udp_url(o.url);
+    if (!u || u.value().mode != net::UdpMode::Multicast)
+      throw std::runtime_error("--aoi needs a multicast --net group (the base of the cell groups), not " + o.url);
+    if (auto g = net::AoiGrid::make(u.value().address, o.aoi_cell_m, o.aoi_groups); !g) throw std::runtime_error(g.error());
+    c.transport.join_destination = false;  // the cell groups are joined as the vehicles need them
+  }
   return c;
 }
 

@@ -18,6 +18,9 @@ struct BridgeOptions {
   int node = 1;                              // --node: vehicles with node = N are ours
   int exercise = 1, site = 1, app = 1;       // DIS identity (app default = node, set by caller)
   double timeout_s = dis_defaults::kTimeoutS;  // remote entity timeout, s
+  double aoi_cell_m = 0;                     // --aoi: cell size, m; 0 = off (one group)
+  int aoi_groups = net::kAoiDefaultMaxGroups;  // --aoi-groups: at most this many cell groups
+  int ttl = 1;                               // --ttl: multicast TTL (more than 1 to cross routers)
 };
 
 // Application ids at or above this carry cultural features (fixed objects).
@@ -29,7 +32,8 @@ double dis_timeout_from_env(double fallback);
 bool dis_pack_from_env();
 
 // The session of `o`; throws on an identity out of range (--app 1-32767, --site 1-65535,
-// --exercise 1-255).
+// --exercise 1-255), a --ttl out of 1-255, or an --aoi grid that cannot be made (net/aoi.hpp);
+// with --aoi the transport holds many groups and joins none at first.
 net::SessionConfig session_config(const BridgeOptions& o);
 // Annex C thresholds with the timeout `timeout_s`; a timeout shorter than the default (tests)
 // shortens the heartbeat in the Annex C ratio 5:12, so that a quiet living entity never times out.

@@ -26,6 +26,12 @@ int main(int argc, char** argv) {
   run->add_option("--exercise", o.exercise, "DIS exercise id (default 1)")->check(CLI::Range(1, 255));
   run->add_option("--site", o.site, "DIS site (default 1)")->check(CLI::Range(1, 65535));
   run->add_option("--app", o.app, "DIS application (default = node)")->check(CLI::Range(1, 65535));
+  run->add_option("--aoi", o.aoi_m, "area of interest: cells of CELL_M metres, one multicast group each (default off)")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--aoi-groups", o.aoi_groups, "at most N cell groups from the --net group up (default 1024)")
+      ->check(CLI::Range(1, 65536));
+  run->add_option("--ttl", o.ttl, "multicast TTL (default 1: one LAN; more to cross multicast routers)")
+      ->check(CLI::Range(1, 255));
   run->add_option("--start-at", o.start_at, "start the scenario clock at this UNIX time");
   run->add_option("--snapshot-every", o.snapshot_every, "also write a frame every S scenario seconds")->check(CLI::PositiveNumber);
   std::string size;

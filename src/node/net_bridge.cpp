@@ -61,6 +61,10 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
   }
   pubs_.assign(own_.size(), net::DrPublisher(net::DrAlgorithm::RVW, dr_thresholds(o.timeout_s)));
   sent_appearance_.assign(own_.size(), 0);
+  sent_group_.assign(own_.size(), net::Session::kDestination);
+  if (o.aoi_cell_m > 0)
+    aoi_ = std::make_unique<AreaOfInterest>(o.aoi_cell_m, o.aoi_groups, session_->transport().destination().address, w,
+                                            dr_thresholds(o.timeout_s).heartbeat_s);
   prev_vel_ecef_.assign(own_.size(), Vec3::Zero());
   prev_heading_.assign(own_.size(), 0.f);
   for (size_t i = 0; i < own_.size(); ++i) prev_heading_[i] = ents.heading_deg[own_[i]];
@@ -144,11 +148,12 @@ void NetBridge::receive(std::span<const std::uint8_t> datagram, double arrival_s
                                 [&](const net::CollisionPdu& p) { on_collision(p); }});
 }
 
-void NetBridge::before_step(world::World&) {
+void NetBridge::before_step(world::World& w) {
   now_s_ = clock_s();
   if (!started_) started_ = true, start_s_ = now_s_;  // rates count from the first tick
   ownership_.clear();
   check_signal();
+  if (aoi_) aoi_->update(w, own_, *session_);  // join / leave before draining the socket
   session_->poll_datagrams([&](std::span<const std::uint8_t> d) { receive(d, now_s_); });
   remotes_.expire(now_s_);
   remotes_.set_poses(now_s_);
@@ -316,14 +321,16 @@ void NetBridge::publish_vehicles() {
     prev_vel_ecef_[i] = v;
     prev_heading_[i] = w.ents.heading_deg[e];
     const std::uint32_t app = damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]);
-    const bool changed = pubs_[i].has_sent() && app != sent_appearance_[i];
+    const std::uint32_t group = group_at(w.ents.pos[e]);
+    // A damage change, or a move into another cell's group (announced there at once).
+    const bool changed = pubs_[i].has_sent() && (app != sent_appearance_[i] || group != sent_group_[i]);
     if (!changed && pubs_[i].needs_update(s, t) == net::DrPublisher::Reason::None) continue;
-    if (!pack_ && sent_now >= kMaxDatagramsPerTick && !changed) {  // a damage change never waits
+    if ((!pack_ || aoi_) && sent_now >= kMaxDatagramsPerTick && !changed) {  // a damage change never waits
       if (first_deferred == n) first_deferred = i;
       continue;
     }
     fill_entity_state(w, e, own_id(e), s, pubs_[i].algorithm(), app, static_cast<std::uint8_t>(opt_.exercise), es_);
-    if (pack_) {  // several Entity States to a datagram of at most 1400 octets
+    if (pack_ && !aoi_) {  // several Entity States to a datagram of at most 1400 octets
       if (!batch_.add(es_)) {
         flush_batch();
         if (!batch_.add(es_)) {  // cannot happen for our PDUs (no variable parameters)
@@ -331,11 +338,12 @@ void NetBridge::publish_vehicles() {
           continue;
         }
       }
-    } else if (!session_->send(es_)) {
+    } else if (!session_->send_to(group, es_)) {
       continue;
     }
     pubs_[i].mark_sent(s, t);
     sent_appearance_[i] = app;
+    sent_group_[i] = group;
     ++sent_now;
     if (w.kinds[w.ents.kind[e]].mobility == world::Mobility::Ground) ++ground_es_sent_;
   }
@@ -354,7 +362,7 @@ void NetBridge::leave() {
     const std::uint32_t app = damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]) | net::kAppearanceDeactivated;
     fill_entity_state(w, e, own_id(e), entity_truth(w, e), net::DrAlgorithm::Static, app,
                       static_cast<std::uint8_t>(opt_.exercise), es_);
-    session_->send(es_);
+    session_->send_to(group_at(w.ents.pos[e]), es_);
   }
 }
 
@@ -368,7 +376,9 @@ void NetBridge::publish_collisions(const TickReport& r) {
     if (own < 0 || !ownership_.announces(own, remotes_, other)) continue;  // not ours to announce
     const world::Result res = own == c.a ? c.result_a : c.result_b;
     const Vec3 v = ownership_.velocity_before(own, other, w.ents.vel[own]);
-    session_->send(collision_pdu(w, own, own_id(own), remotes_.id_of(other), next_event(), res, v, c.point));
+    // To the colliding entity's cell: its owner holds that group.
+    session_->send_to(group_at(w.ents.pos[other]),
+                      collision_pdu(w, own, own_id(own), remotes_.id_of(other), next_event(), res, v, c.point));
   }
 }
 
@@ -380,7 +390,7 @@ void NetBridge::send_cultural(int o) {
   }
   net::EntityStatePdu p;
   fill_cultural(sim_.world(), o, {static_cast<std::uint16_t>(opt_.site), cultural_app_, static_cast<std::uint16_t>(o + 1)}, p);
-  session_->send(p);
+  session_->send_to(group_at(sim_.world().fixed.pos[o]), p);
 }
 
 void NetBridge::publish_fixed(const TickReport& r) {
@@ -412,8 +422,8 @@ void NetBridge::publish_fires(const TickReport& r) {
     const int shooter = ents.owner[m], tgt = ents.target[m];
     const net::EventId evn = next_event();
     fire_event_[m] = evn.event_number;
-    session_->send(fire_pdu(sim_.world(), m, shooter >= 0 ? own_id(shooter) : net::EntityId{},
-                            tgt >= 0 ? net_id(tgt) : net::EntityId{}, own_id(m), evn));
+    session_->send_to(group_at(ents.pos[m]), fire_pdu(sim_.world(), m, shooter >= 0 ? own_id(shooter) : net::EntityId{},
+                                                      tgt >= 0 ? net_id(tgt) : net::EntityId{}, own_id(m), evn));
   }
 }
 
@@ -430,8 +440,9 @@ void NetBridge::publish_detonations(const TickReport& r) {
     } else {
       evn = next_event();
     }
-    session_->send(detonation_pdu(sim_.world(), d, ents.owner[m] >= 0 ? own_id(ents.owner[m]) : net::EntityId{},
-                                  d.target >= 0 ? net_id(d.target) : net::EntityId{}, own_id(m), evn));
+    session_->send_to(group_at(d.point),
+                      detonation_pdu(sim_.world(), d, ents.owner[m] >= 0 ? own_id(ents.owner[m]) : net::EntityId{},
+                                     d.target >= 0 ? net_id(d.target) : net::EntityId{}, own_id(m), evn));
   }
 }
 

@@ -5,6 +5,7 @@
 //   remote_entities vehicles of other nodes: join, pose, damage, timeout (and their events)
 //   pdu_build       Entity State / cultural feature / Fire / Detonation / Collision PDUs
 //   ownership       who decides a contact between entities of two nodes
+//   area_of_interest --aoi: the cell group of each PDU, the groups this node holds
 // Contract (shared/ARCHITECTURE.md, Network):
 //  * Receive: receive(datagram, arrival_s) takes one UDP payload (from the socket, a recording
 //    or a test) and hands its PDUs to the handlers below; before_step polls the socket into it.
@@ -35,6 +36,12 @@
 //    type = the kind's DIS type, result 1 entity impact / 3 ground impact). A remote Detonation
 //    is queued with Simulation::inject_detonation as a detonation of the munition kind of its
 //    type (he_round when unknown): crater and blast damage as if it happened here.
+//  * Area of interest (--aoi CELL_M, area_of_interest.hpp): each Entity State goes to the group
+//    of the cell its entity is in, and at once (past the per-tick cap) when that cell's group
+//    changed; a Fire to the group of the round's cell, a Detonation to the group of its point,
+//    a Collision PDU to the group of the colliding entity (whose owner holds that cell), a
+//    cultural feature to its object's cell, the end-of-run deactivation to each vehicle's cell.
+//    NPSNET_DIS_PACK is ignored with --aoi (a datagram goes to one group).
 //  * Counters (net::Counters::summary) are printed at the end of a run and on SIGUSR1.
 // Every change to the world goes through world::Changes (Simulation::inject), except the remote
 // state stage (remote_entities.hpp: pose, velocity, active flag of remote entities).
@@ -50,6 +57,7 @@
 #include <vector>
 
 #include "net/net.hpp"
+#include "node/area_of_interest.hpp"
 #include "node/bridge_options.hpp"
 #include "node/event_log.hpp"
 #include "node/ownership.hpp"
@@ -115,6 +123,8 @@ class NetBridge {
   void publish_detonations(const TickReport& r);
   void send_cultural(int object);
   void flush_batch();
+  // The group a PDU about the local point p goes to (the --net destination without --aoi).
+  std::uint32_t group_at(const Vec3& p) const { return aoi_ ? aoi_->group_at(p) : net::Session::kDestination; }
 
   BridgeOptions opt_;
   Simulation& sim_;
@@ -132,6 +142,8 @@ class NetBridge {
   std::vector<net::DrPublisher> pubs_;
   std::vector<std::uint32_t> sent_appearance_;
   std::vector<Vec3> prev_vel_ecef_;
+  std::vector<std::uint32_t> sent_group_;  // per own vehicle: the group of its last Entity State
+  std::unique_ptr<AreaOfInterest> aoi_;
   std::vector<float> prev_heading_;
   std::uint64_t ground_es_sent_ = 0;
   int ground_vehicles_ = 0;

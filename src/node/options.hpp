@@ -19,6 +19,9 @@ struct RunOptions {
   std::string iface = "127.0.0.1";
   int node = 1, exercise = 1, site = 1, app = -1;  // app: default = node
   std::optional<double> start_at;
+  double aoi_m = 0;          // --aoi CELL_M: area-of-interest cell groups; 0 = off (one group)
+  int aoi_groups = 1024;     // --aoi-groups N: at most N cell groups
+  int ttl = 1;               // --ttl: multicast TTL
   std::optional<double> snapshot_every;
   int width = 960, height = 540;
   bool no_render = false;

@@ -45,6 +45,10 @@ int run_command(const RunOptions& opt) {
   }
   // --- network ---
   const bool net_on = o.net != "off";
+  if (o.aoi_m > 0 && !net_on) {
+    std::fprintf(stderr, "--aoi %g: needs --net udp://GROUP:PORT (the cell groups are multicast groups)\n", o.aoi_m);
+    return 2;
+  }
 #ifdef NPSNET_HAVE_NET
   double dis_timeout_s = dis_defaults::kTimeoutS;
   if (net_on) {
@@ -59,7 +63,8 @@ int run_command(const RunOptions& opt) {
       return 2;
     }
   }
-  const BridgeOptions net_opt{o.net, o.iface, o.node, o.exercise, o.site, o.app > 0 ? o.app : o.node, dis_timeout_s};
+  const BridgeOptions net_opt{o.net, o.iface, o.node, o.exercise, o.site, o.app > 0 ? o.app : o.node, dis_timeout_s,
+                              o.aoi_m, o.aoi_groups, o.ttl};
   std::unique_ptr<net::Session> session;  // opened before anything is written
   if (net_on) {
     try {

@@ -44,7 +44,11 @@ Procs::~Procs() {
 
 int Procs::start(const std::vector<std::string>& args, const std::filesystem::path& out,
                  const std::vector<std::string>& env) {
-  const std::string bin = npsnet_binary().string();
+  return start_program(npsnet_binary().string(), args, out, env);
+}
+
+int Procs::start_program(const std::string& bin, const std::vector<std::string>& args,
+                         const std::filesystem::path& out, const std::vector<std::string>& env) {
   std::vector<std::string> all{bin};
   all.insert(all.end(), args.begin(), args.end());
   const pid_t pid = ::fork();
@@ -67,10 +71,17 @@ int Procs::start(const std::vector<std::string>& args, const std::filesystem::pa
   return pid;
 }
 
-int Procs::wait(int pid, double timeout_s) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+int Procs::wait(int pid, double timeout_s, double term_grace_s) {
+  auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   int status = 0;
-  while (std::chrono::steady_clock::now() < end) {
+  bool termed = term_grace_s <= 0;
+  while (true) {
+    if (std::chrono::steady_clock::now() >= end) {
+      if (termed) break;
+      ::kill(pid, SIGTERM);  // let it clean up (e.g. a script's trap), then SIGKILL
+      termed = true;
+      end = std::chrono::steady_clock::now() + std::chrono::duration<double>(term_grace_s);
+    }
     const pid_t r = ::waitpid(pid, &status, WNOHANG);
     if (r == pid) {
       running_.erase(std::remove(running_.begin(), running_.end(), pid), running_.end());
@@ -98,6 +109,13 @@ std::vector<nlohmann::json> read_events(const std::filesystem::path& file) {
   while (std::getline(in, line))
     if (!line.empty()) out.push_back(nlohmann::json::parse(line));
   return out;
+}
+
+std::vector<nlohmann::json> of_type(const std::vector<nlohmann::json>& events, const std::string& type) {
+  std::vector<nlohmann::json> r;
+  for (const auto& e : events)
+    if (e.value("event", "") == type) r.push_back(e);
+  return r;
 }
 
 std::string read_text(const std::filesystem::path& file) {

@@ -30,9 +30,13 @@ class Procs {
   // stderr go to `out`. Returns the child's pid.
   int start(const std::vector<std::string>& args, const std::filesystem::path& out,
             const std::vector<std::string>& env = {});
-  // Waits until `pid` exits or the deadline passes (then SIGKILL). Returns the exit status
-  // (0-255), 128+signal when killed by a signal, or -1 when it had to be killed at the deadline.
-  int wait(int pid, double timeout_s);
+  // The same for any program (e.g. /bin/bash and a script).
+  int start_program(const std::string& program, const std::vector<std::string>& args,
+                    const std::filesystem::path& out, const std::vector<std::string>& env = {});
+  // Waits until `pid` exits or the deadline passes (then SIGKILL; with term_grace_s > 0 first
+  // SIGTERM and that many seconds to clean up). Returns the exit status (0-255), 128+signal when
+  // killed by a signal, or -1 when it had to be killed at the deadline.
+  int wait(int pid, double timeout_s, double term_grace_s = 0);
   void kill_now(int pid);  // SIGKILL and reap
 
  private:
@@ -40,6 +44,8 @@ class Procs {
 };
 
 std::vector<nlohmann::json> read_events(const std::filesystem::path& file);
+// The events of one type ("collision", "crater", ...), in order.
+std::vector<nlohmann::json> of_type(const std::vector<nlohmann::json>& events, const std::string& type);
 std::string read_text(const std::filesystem::path& file);
 
 }  // namespace lan

@@ -34,12 +34,7 @@ std::vector<std::string> node_args(const std::string& scenario, int port, int no
           "--snapshots", (dir / ("snap_" + tag)).string()};
 }
 
-std::vector<json> of_type(const std::vector<json>& evs, const std::string& type) {
-  std::vector<json> r;
-  for (const auto& e : evs)
-    if (e.value("event", "") == type) r.push_back(e);
-  return r;
-}
+using lan::of_type;
 
 std::set<std::string> pair_of(const json& c) { return {c.value("a", ""), c.value("b", "")}; }
 
