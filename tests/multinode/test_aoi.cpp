@@ -81,6 +81,8 @@ TEST(AoiExercise, FarNodesHearNoneOfEachOtherWithAoiAllWithoutAndAgreeOnABorderC
   EXPECT_EQ(joined_ids(logs[2]), (std::set<std::string>{"b2", "e2"})) << outs[2];
   EXPECT_EQ(joined_ids(logs[3]), (std::set<std::string>{"b1", "w1"})) << outs[3];
   for (int n = 0; n < 2; ++n) {
+    std::printf("node %d decoded entity states: %ld with --aoi 2000, %ld without\n", n + 1,
+                decoded_entity_states(outs[n]), decoded_entity_states(outs[n + 2]));
     EXPECT_LT(decoded_entity_states(outs[n]), decoded_entity_states(outs[n + 2]))
         << "with AOI a node decodes fewer Entity States\n" << outs[n] << outs[n + 2];
     EXPECT_NE(outs[n].find("aoi groups="), std::string::npos) << outs[n];
@@ -128,6 +130,7 @@ TEST(AoiExercise, VehicleFlyingInIsShownBeforeItComesWithinRange) {
   for (const auto& e : of_type(log1, "entity_joined"))
     if (e["id"] == "f2") seen_at = e["t"].get<double>();
   ASSERT_GE(seen_at, 0) << "node 1 never showed f2\n" << lan::read_text(nodes[0].out);
+  std::printf("f2 shown on node 1 at t = %.1f s, %.0f m from w1\n", seen_at, distance(seen_at));
   EXPECT_GT(seen_at, 1.0) << "not heard at the start (8.5 km, outside w1's area of interest)";
   EXPECT_GT(distance(seen_at), 5000.0) << "shown before it comes within w1's 5 km sensor range (t = " << seen_at << ")";
   EXPECT_LT(distance(seen_at), 5000.0 + (1000.0 / 3.6 + 60.0 / 3.6) * 5.0 + 2000.0 * std::sqrt(2.0))
