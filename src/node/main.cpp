@@ -4,18 +4,30 @@
 #include <cstdio>
 #include <exception>
 
+#include "node/cli.hpp"
 #include "node/options.hpp"
+#include "world/scenario.hpp"
 
 int main(int argc, char** argv) {
   using npsnet::node::RunOptions;
+  using npsnet::node::finite_in;
   CLI::App app{"NPSNET node: networked battlefield simulation with real-time collision detection"};
   app.require_subcommand(1);
+  app.footer(R"(Examples:
+  npsnet run                                      the default scenario; PNGs + events.jsonl in screenshots/
+  npsnet run --scenario my.toml --seconds 30 --snapshots out/
+  npsnet run --no-render --events out/e.jsonl     event log only, as fast as the machine goes
+  npsnet check my.toml                            validate, and print the world's summary
+  npsnet run --net udp://239.1.2.3:3000 --node 2  one node of a networked exercise
+Scenario format, kinds and the local frame: README.md ("Your own exercise").
+Exit codes: 0 ok, 2 bad input (nothing written), 1 failure while running.)");
   RunOptions o;
   auto* run = app.add_subcommand("run", "run a scenario (headless unless --window)");
   run->add_option("--scenario", o.scenario, "scenario TOML (default scenarios/default.toml)");
-  auto* sec = run->add_option("--seconds", o.seconds, "run length in scenario seconds")->check(CLI::PositiveNumber);
-  run->add_option("--frames", o.frames, "run length in ticks")->check(CLI::PositiveNumber)->excludes(sec);
-  run->add_option("--dt", o.dt, "fixed step in seconds, 0.01 to 1 (default 0.1)")->check(CLI::Range(0.01, 1.0));
+  auto* sec = run->add_option("--seconds", o.seconds, "run length in scenario seconds")
+                  ->check(finite_in(0, npsnet::world::kMaxDurationS, "s", true));
+  run->add_option("--frames", o.frames, "run length in ticks")->check(CLI::Range(1L, 1000000000L))->excludes(sec);
+  run->add_option("--dt", o.dt, "fixed step in seconds, 0.01 to 1 (default 0.1)")->check(finite_in(0.01, 1.0, "s"));
   run->add_option("--events", o.events, "event log, JSON Lines (default <snapshots>/events.jsonl)");
   run->add_option("--snapshots", o.snapshots, "folder for snapshot PNGs (default screenshots/)");
   run->add_flag("--window", o.window, "show a GLFW window (needs a display)");
@@ -27,13 +39,19 @@ int main(int argc, char** argv) {
   run->add_option("--site", o.site, "DIS site (default 1)")->check(CLI::Range(1, 65535));
   run->add_option("--app", o.app, "DIS application (default = node)")->check(CLI::Range(1, 65535));
   run->add_option("--aoi", o.aoi_m, "area of interest: cells of CELL_M metres, one multicast group each (default off)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_in(0, 1e7, "m", true));
   run->add_option("--aoi-groups", o.aoi_groups, "at most N cell groups from the --net group up (default 1024)")
       ->check(CLI::Range(1, 65536));
   run->add_option("--ttl", o.ttl, "multicast TTL (default 1: one LAN; more to cross multicast routers)")
       ->check(CLI::Range(1, 255));
-  run->add_option("--start-at", o.start_at, "start the scenario clock at this UNIX time");
-  run->add_option("--snapshot-every", o.snapshot_every, "also write a frame every S scenario seconds")->check(CLI::PositiveNumber);
+  run->add_option("--start-at", o.start_at, "start the scenario clock at this UNIX time")->check(finite_in(0, 1e11, "s"));
+  run->add_option("--snapshot-every", o.snapshot_every, "also write a frame every S scenario seconds")
+      ->check(finite_in(0, npsnet::world::kMaxDurationS, "s", true));
+  run->add_option("--max-snapshots", o.max_snapshots, "snapshot budget: most frames per run (default 200)")
+      ->check(CLI::Range(0, 1000000));
+  run->add_option("--max-snapshots-per-minute", o.max_snapshots_per_minute,
+                  "snapshot budget: most frames in 60 s of scenario time (default 60)")
+      ->check(CLI::Range(0, 1000000));
   std::string size;
   run->add_option("--size", size, "snapshot size WxH (default 960x540)");
   run->add_flag("--no-render", o.no_render, "do not render snapshots (event log only)");
@@ -41,11 +59,20 @@ int main(int argc, char** argv) {
   std::vector<std::string> files;
   auto* check = app.add_subcommand("check", "validate scenario, terrain, object, kind and model files");
   check->add_option("FILE", files, "files to check")->required();
+  run->footer(R"(Examples:
+  npsnet run --seconds 20 --snapshots out/ --snapshot-every 5
+  npsnet run --scenario scenarios/fort-hunter-liggett.toml --no-render --events fhl.jsonl
+  npsnet run --max-snapshots 50 --max-snapshots-per-minute 20    bound the PNGs of a dense world)");
+  check->footer(R"(Examples:
+  npsnet check scenarios/default.toml             problems as FILE:LINE: field: message, or a world summary
+  npsnet check my-objects.csv models/tree.obj my-terrain.tif)");
+  if (npsnet::node::misplaced_first_argument(app, argc, argv)) return 2;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : 2;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    std::fprintf(stderr, "%s\n", npsnet::node::parse_error_message(app, e).c_str());
+    return 2;
   }
   if (!size.empty()) {
     int w = 0, h = 0;

@@ -23,6 +23,7 @@ struct RunOptions {
   int aoi_groups = 1024;     // --aoi-groups N: at most N cell groups
   int ttl = 1;               // --ttl: multicast TTL
   std::optional<double> snapshot_every;
+  int max_snapshots = 200, max_snapshots_per_minute = 60;  // snapshot budget (snapshots.hpp)
   int width = 960, height = 540;
   bool no_render = false;
   bool quiet = false;

@@ -98,17 +98,23 @@ int run_command(const RunOptions& opt) {
   const long ticks = o.frames ? *o.frames
                               : static_cast<long>(std::ceil((o.seconds ? *o.seconds : sc.duration_s) / o.dt - 1e-9));
   if (o.events.empty()) o.events = o.snapshots / "events.jsonl";
-  EventLog log(o.events);
-  if (!o.quiet)
-    std::fprintf(stderr, "npsnet: %s: %zu fixed objects, %zu vehicles, %ld ticks of %.3f s\n", o.scenario.string().c_str(),
-                 w.fixed.size(), w.ents.size(), ticks, o.dt);
+  // Outputs are checked before anything is written: the snapshot folder (when rendering), the
+  // renderer, then the event log is opened (truncated) last.
+  EventLog log;
   Simulation sim(std::move(w), sc, log, o.dt);
 #ifdef NPSNET_HAVE_RENDER
   std::unique_ptr<Snapshots> snaps;
   if (!o.no_render || o.window) {
     try {
-      snaps = std::make_unique<Snapshots>(SnapshotOptions{o.snapshots, o.width, o.height, o.snapshot_every.value_or(0), o.window},
-                                          sim.world(), o.dt, log);
+      ensure_writable_dir(o.snapshots, "--snapshots");
+    } catch (const OutputError& e) {
+      std::fprintf(stderr, "npsnet: %s\n", e.what());
+      return 2;
+    }
+    try {
+      SnapshotOptions so{o.snapshots, o.width, o.height, o.snapshot_every.value_or(0), o.window};
+      so.max_frames = o.max_snapshots, so.max_per_minute = o.max_snapshots_per_minute;
+      snaps = std::make_unique<Snapshots>(so, sim.world(), o.dt, log);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "npsnet: renderer: %s\n", e.what());
       return 1;
@@ -116,6 +122,17 @@ int run_command(const RunOptions& opt) {
     sim.before_apply = [&](const world::World& ww, const world::Changes& c) { snaps->before_apply(ww, c); };
     sim.on_tick = [&](const TickReport& r) { snaps->after_tick(sim.world(), r.changes, r.applied); };
   }
+#endif
+  try {
+    log.open(o.events);
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "npsnet: --events %s\n", e.what());
+    return 2;
+  }
+  if (!o.quiet)
+    std::fprintf(stderr, "npsnet: %s: %zu fixed objects, %zu vehicles, %ld ticks of %.3f s\n", o.scenario.string().c_str(),
+                 sim.world().fixed.size(), sim.world().ents.size(), ticks, o.dt);
+#ifdef NPSNET_HAVE_RENDER
   auto more = [&] { return snaps && snaps->pending(); };
 #else
   auto more = [] { return false; };
@@ -142,16 +159,28 @@ int run_command(const RunOptions& opt) {
   // The run goes on past its length (at most kResultDelayS more) until every result frame is written.
   const long extra = static_cast<long>(std::ceil(2.0 / o.dt)) + 1;
   long done = 0;
-  for (long i = 0; i < ticks || (more() && i < ticks + extra); ++i, ++done) {
-    sim.tick();
+  try {
+    for (long i = 0; i < ticks || (more() && i < ticks + extra); ++i, ++done) {
+      sim.tick();
 #ifdef NPSNET_HAVE_RENDER
-    if (o.window && snaps && !snaps->present(sim.world())) break;  // window closed
+      if (o.window && snaps && !snaps->present(sim.world())) break;  // window closed
 #endif
-    if (paced) std::this_thread::sleep_until(t0 + std::chrono::duration<double>((i + 1) * o.dt));
-    if (!o.quiet && i + 1 >= next_progress && ticks >= 10) {
-      std::fprintf(stderr, "npsnet: t = %.1f s (%ld%%)\n", sim.world().t, (i + 1) * 100 / ticks);
-      next_progress += ticks / 10;
+      if (paced) std::this_thread::sleep_until(t0 + std::chrono::duration<double>((i + 1) * o.dt));
+      if (!o.quiet && i + 1 >= next_progress && ticks >= 10) {
+        std::fprintf(stderr, "npsnet: t = %.1f s (%ld%%)\n", sim.world().t, (i + 1) * 100 / ticks);
+        next_progress += ticks / 10;
+      }
     }
+  } catch (const OutputError& e) {
+    // A snapshot or the event log could not be written: say so, and end the log with it.
+    std::fprintf(stderr, "npsnet: t = %.1f s: %s; run stopped\n", sim.world().t, e.what());
+    try {
+      log.write({{"event", "error"}, {"t", std::round(sim.world().t * 1000) / 1000}, {"frame", sim.world().frame},
+                 {"message", e.what()}});
+      log.flush();
+    } catch (const OutputError&) {
+    }
+    return 1;
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // --- network ---
@@ -162,7 +191,18 @@ int run_command(const RunOptions& opt) {
   }
 #endif
   // --- network end ---
-  log.flush();
+  try {
+    log.flush();
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "npsnet: %s\n", e.what());
+    return 1;
+  }
+#ifdef NPSNET_HAVE_RENDER
+  if (snaps && snaps->skipped() > 0)
+    std::fprintf(stderr, "npsnet: warning: %d snapshot frame(s) skipped by the budget (%d written; --max-snapshots %d, "
+                 "--max-snapshots-per-minute %d); see the snapshot_skipped events\n",
+                 snaps->skipped(), snaps->written(), o.max_snapshots, o.max_snapshots_per_minute);
+#endif
   if (!o.quiet) {
     std::fprintf(stderr, "npsnet: done: %ld ticks in %.2f s wall (%.3f ms/tick); events -> %s\n", done, wall,
                  1000 * wall / std::max(1L, done), o.events.string().c_str());

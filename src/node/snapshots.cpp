@@ -1,7 +1,9 @@
 #ifdef NPSNET_HAVE_RENDER
 #include "node/snapshots.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "render/renderer.hpp"
 #include "world/pose.hpp"
@@ -31,6 +33,24 @@ render::Camera driver_eye(const world::World& w, int d) {
   return render::vehicle_eye(front, w.ents.heading_deg[d], w.ents.pitch_deg[d], std::max(1.5, 0.8 * k.height_m));
 }
 
+// The first of this node's vehicles that is alive (not a wreck), else the first wreck; -1: none.
+int live_vehicle(const world::World& w, bool& alive) {
+  int wreck = -1;
+  for (size_t e = 0; e < w.ents.size(); ++e) {
+    const world::Kind& k = w.kinds[w.ents.kind[e]];
+    if (!w.ents.local[e] || !w.ents.active[e] || k.mobility == world::Mobility::Munition) continue;
+    if (w.ents.state[e] + 1 < static_cast<int>(k.states.size())) return alive = true, static_cast<int>(e);
+    if (wreck < 0) wreck = static_cast<int>(e);
+  }
+  alive = false;
+  return wreck;
+}
+
+float lerp_deg(float a, float b, double f) {
+  const double d = std::remainder(static_cast<double>(b) - a, 360.0);  // the short way round
+  return static_cast<float>(a + f * d);
+}
+
 std::string sanitize(const std::string& s) {
   std::string o;
   for (char c : s) o += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-') ? c : '_';
@@ -43,8 +63,11 @@ Snapshots::Snapshots(const SnapshotOptions& o, const world::World& w, double dt,
   ro.width = o.width, ro.height = o.height, ro.window = o.window;
   ro.shader_dir = NPSNET_SHADER_DIR;
   r_ = std::make_unique<render::Renderer>(ro, w);
-  std::filesystem::create_directories(o.dir);
-  ring_.resize(static_cast<size_t>(std::ceil(kImminentLeadS / dt)) + 1);
+  std::error_code ec;
+  std::filesystem::create_directories(o.dir, ec);
+  // States of the last kImminentLeadS (the ticks before this one), enough to reach t - 0.5 s.
+  ring_.resize(static_cast<size_t>(std::max(1.0, std::ceil(kImminentLeadS / dt - 1e-9))));
+  dt_ = dt;
   next_periodic_ = 0;
 }
 
@@ -56,20 +79,74 @@ int Snapshots::driven(const world::World& w) const {
   return -1;
 }
 
+const Snapshots::State* Snapshots::past_state(double t) {
+  if (filled_ == 0) return nullptr;
+  auto at = [&](size_t k) -> const State& { return ring_[(head_ + ring_.size() - filled_ + k) % ring_.size()]; };
+  const double eps = 1e-6 * dt_;
+  if (t <= at(0).t + eps) return &at(0);  // not that much history yet (or exactly the oldest)
+  for (size_t k = 1; k < filled_; ++k) {
+    const State& b = at(k);
+    if (b.t < t - eps) continue;
+    if (b.t <= t + eps) return &b;
+    const State& a = at(k - 1);
+    const double f = (t - a.t) / (b.t - a.t);
+    lerp_.ents = a.ents;
+    lerp_.fixed_state = a.fixed_state;  // a state change happens at a tick: a's holds until b
+    lerp_.t = t;
+    world::Entities& e = lerp_.ents;
+    const size_t n = std::min(a.ents.size(), b.ents.size());
+    for (size_t i = 0; i < n; ++i) {
+      e.pos[i] = a.ents.pos[i] + f * (b.ents.pos[i] - a.ents.pos[i]);
+      e.vel[i] = a.ents.vel[i] + f * (b.ents.vel[i] - a.ents.vel[i]);
+      e.heading_deg[i] = lerp_deg(a.ents.heading_deg[i], b.ents.heading_deg[i], f);
+      e.pitch_deg[i] = lerp_deg(a.ents.pitch_deg[i], b.ents.pitch_deg[i], f);
+      e.roll_deg[i] = lerp_deg(a.ents.roll_deg[i], b.ents.roll_deg[i], f);
+    }
+    return &lerp_;
+  }
+  return &at(filled_ - 1);
+}
+
+bool Snapshots::budget(const world::World& w, int n, const std::vector<std::string>& files) {
+  const double t = w.t;
+  taken_.erase(std::remove_if(taken_.begin(), taken_.end(), [&](double u) { return u <= t - 60.0 + 1e-9; }), taken_.end());
+  std::string reason;
+  if (taken_total_ + n > opt_.max_frames)
+    reason = "budget: at most " + std::to_string(opt_.max_frames) + " frames per run (--max-snapshots)";
+  else if (static_cast<int>(taken_.size()) + n > opt_.max_per_minute)
+    reason = "budget: at most " + std::to_string(opt_.max_per_minute) +
+             " frames in 60 s of scenario time (--max-snapshots-per-minute)";
+  if (reason.empty()) {
+    taken_total_ += n;
+    taken_.insert(taken_.end(), static_cast<size_t>(n), t);
+    return true;
+  }
+  if (skipped_ == 0)
+    std::fprintf(stderr, "npsnet: warning: t = %.1f s: snapshot %s reached; frames are skipped (each logged as a snapshot_skipped event)\n",
+                 t, reason.c_str());
+  for (const auto& f : files) {
+    log_.write({{"event", "snapshot_skipped"}, {"t", std::round(t * 1000) / 1000}, {"frame", w.frame},
+                {"file", (opt_.dir / f).string()}, {"reason", reason}});
+    ++skipped_;
+  }
+  return false;
+}
+
 void Snapshots::write(const world::World& w, const std::string& name, const State* past, const Vec3& eye,
-                      const Vec3& target, double t) {
+                      const Vec3& target, double t, int hud_entity) {
   render::SceneView v;
   v.world = &w;
   v.ents = past ? &past->ents : &w.ents;
   v.fixed_state = past ? &past->fixed_state : &w.fixed.state;
   v.t = t;
-  v.driven = driven(w);
+  v.driven = hud_entity == kDriven ? driven(w) : hud_entity;
   const render::Hud hud = make_hud(w, *v.ents, v.driven);
   render::Camera cam;
   cam.eye = eye, cam.target = target;
   r_->render(v, cam, hud, true);
   const auto file = opt_.dir / name;
-  if (!r_->write_png(file)) throw std::runtime_error(file.string() + ": cannot write PNG");
+  std::string why;
+  if (!r_->write_png(file, &why)) throw OutputError(file.string() + ": cannot write the snapshot: " + why);
   nlohmann::json ev = {{"event", "snapshot"}, {"t", std::round(w.t * 1000) / 1000}, {"frame", w.frame},
                        {"file", file.string()}, {"scene_t", std::round(t * 1000) / 1000}};
   log_.write(ev);
@@ -83,10 +160,9 @@ void Snapshots::before_apply(const world::World& w, const world::Changes& c) {
     char num[16];
     std::snprintf(num, sizeof num, "%04d", ++counter_);
     const std::string base = std::string(num) + "-" + kind + "-" + sanitize(a_id) + "-" + sanitize(b_id);
+    if (!budget(w, 2, {base + "-imminent.png", base + "-result.png"})) return;
     const render::Camera cam = render::look_at_pair(w, pa, pb);
-    // the oldest buffered state: about kImminentLeadS ago
-    const State* past = nullptr;
-    if (filled_ > 0) past = &ring_[(head_ + ring_.size() - filled_) % ring_.size()];
+    const State* past = past_state(w.t - kImminentLeadS);
     write(w, base + "-imminent.png", past, cam.eye, cam.target, past ? past->t : w.t);
     pending_.push_back({w.t + kResultDelayS, base, cam.eye, cam.target});
   };
@@ -133,12 +209,22 @@ void Snapshots::after_tick(const world::World& w, const world::Changes& c, const
     }
   }
   if (opt_.every_s > 0 && w.t + 1e-9 >= next_periodic_) {
-    const int d = driven(w);
+    bool alive = false;
+    const int d = live_vehicle(w, alive);
     if (d >= 0) {
-      const auto cam = driver_eye(w, d);
+      render::Camera cam;
+      if (alive) {
+        cam = driver_eye(w, d);
+      } else {  // every vehicle of this node is a wreck: look at the first one from outside
+        const Vec3 c = world::entity_centre(w, d);
+        const Vec2 f = heading_to_dir(w.ents.heading_deg[d]);
+        cam.eye = c - Vec3(f.x(), f.y(), 0) * 40.0 + Vec3(0, 0, 25.0);
+        cam.eye.z() = std::max(cam.eye.z(), w.terrain.height(cam.eye.x(), cam.eye.y()) + 10.0);
+        cam.target = c;
+      }
       char name[64];
       std::snprintf(name, sizeof name, "%04d-periodic-t%07.1f.png", ++counter_, w.t);
-      write(w, name, nullptr, cam.eye, cam.target, w.t);
+      if (budget(w, 1, {name})) write(w, name, nullptr, cam.eye, cam.target, w.t, alive ? d : -1);
     }
     next_periodic_ += opt_.every_s;
   }

@@ -1,14 +1,23 @@
 // Snapshot policy: for each collision or detonation of a vehicle with `snapshots = true`
 // (background traffic never), one `imminent` frame from about 0.5 s before and one `result`
 // frame about 1 s after, both from one camera placed to see the pair, like the thesis's
-// figures A.2-A.9; plus a periodic frame every S seconds from the driven vehicle's eye.
+// figures A.2-A.9; plus a periodic frame every S seconds from the eye of this node's first live
+// vehicle (never from inside a wreck; with none alive, from outside above the first wreck).
 // Files NNNN-<kind>-<a>-<b>-imminent.png / -result.png, each logged as a `snapshot` event.
+//
+// Budget: at most max_frames frames per run and max_per_minute in any 60 s of scenario time.
+// A frame over budget is not rendered; it is logged as a `snapshot_skipped` event (`file`,
+// `reason`), so the event log stays complete, and the first skip is warned about on stderr. An
+// imminent/result pair is taken or skipped whole (both frames counted when the event happens).
 //
 // The imminent frame needs the past. We keep a ring buffer of the last ~0.5 s of world states
 // (entity arrays and fixed-object states, copied into preallocated slots each tick) and render
 // from it, rather than look ahead: looking ahead would mean simulating every tick twice, and on
 // a networked node the future depends on PDUs not yet received. The terrain is not buffered:
 // imminent frames are rendered before this tick's craters are applied (before_apply).
+// Timing: an event logged at tick t (the `t` of its event) gets the state logged at t - 0.5 s
+// (`scene_t` of the snapshot event); when dt does not divide 0.5 s, the two buffered states
+// around t - 0.5 s are interpolated (positions and attitudes).
 #pragma once
 #include <filesystem>
 #include <memory>
@@ -26,17 +35,22 @@ namespace npsnet::node {
 
 inline constexpr double kImminentLeadS = 0.5;  // imminent frame: this long before the contact
 inline constexpr double kResultDelayS = 1.0;   // result frame: this long after
+inline constexpr int kDefaultMaxFrames = 200;    // snapshot budget per run (--max-snapshots)
+inline constexpr int kDefaultMaxPerMinute = 60;  // per 60 s of scenario time (--max-snapshots-per-minute)
 
 struct SnapshotOptions {
   std::filesystem::path dir;
   int width = 960, height = 540;
-  double every_s = 0;  // periodic frames from the driven vehicle; 0 = none
+  double every_s = 0;  // periodic frames from a live vehicle; 0 = none
   bool window = false;
+  int max_frames = kDefaultMaxFrames;             // per run
+  int max_per_minute = kDefaultMaxPerMinute;      // in any 60 s of scenario time
 };
 
 class Snapshots {
  public:
   // Throws std::runtime_error when no GL context can be made or a shader/model is missing.
+  // Every method that writes a PNG throws OutputError (naming the file) when it cannot.
   Snapshots(const SnapshotOptions& o, const world::World& w, double dt, EventLog& log);
   ~Snapshots();
   // Before this tick's changes are applied: record the events to snapshot, render imminent frames.
@@ -47,6 +61,7 @@ class Snapshots {
   bool present(const world::World& w);
   bool pending() const { return !pending_.empty(); }
   int written() const { return written_; }
+  int skipped() const { return skipped_; }
 
  private:
   struct State {
@@ -59,15 +74,24 @@ class Snapshots {
     std::string base;
     Vec3 eye, target;
   };
+  static constexpr int kDriven = -2;  // hud_entity: the driven vehicle's HUD
   void write(const world::World& w, const std::string& name, const State* past, const Vec3& eye,
-             const Vec3& target, double t);
+             const Vec3& target, double t, int hud_entity = kDriven);
   int driven(const world::World& w) const;
+  // The buffered state of scenario time `t` (interpolated), or the oldest one; null when none.
+  const State* past_state(double t);
+  // Takes `n` frames from the budget at scenario time t, or logs `files` as skipped.
+  bool budget(const world::World& w, int n, const std::vector<std::string>& files);
 
   SnapshotOptions opt_;
   EventLog& log_;
   std::unique_ptr<render::Renderer> r_;
   std::vector<State> ring_;
   size_t head_ = 0, filled_ = 0;
+  State lerp_;                 // an interpolated past state (storage reused)
+  std::vector<double> taken_;  // scenario times of the frames taken in the last 60 s
+  int skipped_ = 0, taken_total_ = 0;
+  double dt_ = 0.1;
   std::vector<Pending> pending_;
   int counter_ = 0, written_ = 0;
   double next_periodic_ = 0;

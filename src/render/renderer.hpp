@@ -84,8 +84,9 @@ class Renderer {
   void add_crater(const Vec3& at, double radius_m, double t);
 
   void render(const SceneView& view, const Camera& cam, const Hud& hud, bool map_inset = true);
-  // PNG of the last frame (rows flipped: GL is bottom-up). False (with nothing written) on failure.
-  bool write_png(const std::filesystem::path& file) const;
+  // PNG of the last frame (rows flipped: GL is bottom-up), written to a temporary name and
+  // renamed onto `file` (never a partial PNG). False (nothing written; the reason in *why) on failure.
+  bool write_png(const std::filesystem::path& file, std::string* why = nullptr) const;
   std::vector<uint8_t> pixels() const;  // RGBA, width * height * 4, top row first
 
   int width() const;

@@ -14,6 +14,7 @@
 namespace npsnet::world {
 
 inline constexpr size_t kMaxIdLength = 11;  // the DIS marking's 11 characters
+inline constexpr double kMaxDurationS = 1e7;  // longest run (s, ~116 days): 1e9 ticks at dt 0.01
 
 struct VehicleSpec {
   std::string id, kind;

@@ -6,25 +6,12 @@
 #include <sstream>
 
 #include "support/fixture.hpp"
+#include "support/npsnet_cli.hpp"
 
 using namespace npsnet;
 
 namespace {
-struct Out {
-  int rc;
-  std::string text;
-};
-Out run(const std::string& args) {
-  const std::string cmd = std::string(NPSNET_BINARY_DIR) + "/npsnet " + args + " 2>&1";
-  Out o{-1, ""};
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return o;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, p)) o.text.append(buf, n);
-  const int st = pclose(p);
-  o.rc = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return o;
-}
+test::CliOut run(const std::string& args) { return test::npsnet_cli(args); }
 }  // namespace
 
 TEST(Cli, CheckBundledFilesIsClean) {
