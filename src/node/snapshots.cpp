@@ -133,7 +133,7 @@ bool Snapshots::budget(const world::World& w, int n, const std::vector<std::stri
 }
 
 void Snapshots::write(const world::World& w, const std::string& name, const State* past, const Vec3& eye,
-                      const Vec3& target, double t, int hud_entity) {
+                      const Vec3& target, double t, int hud_entity, const nlohmann::json& extra) {
   render::SceneView v;
   v.world = &w;
   v.ents = past ? &past->ents : &w.ents;
@@ -149,6 +149,7 @@ void Snapshots::write(const world::World& w, const std::string& name, const Stat
   if (!r_->write_png(file, &why)) throw OutputError(file.string() + ": cannot write the snapshot: " + why);
   nlohmann::json ev = {{"event", "snapshot"}, {"t", std::round(w.t * 1000) / 1000}, {"frame", w.frame},
                        {"file", file.string()}, {"scene_t", std::round(t * 1000) / 1000}};
+  if (extra.is_object()) ev.update(extra);
   log_.write(ev);
   ++written_;
 }
@@ -224,7 +225,9 @@ void Snapshots::after_tick(const world::World& w, const world::Changes& c, const
       }
       char name[64];
       std::snprintf(name, sizeof name, "%04d-periodic-t%07.1f.png", ++counter_, w.t);
-      if (budget(w, 1, {name})) write(w, name, nullptr, cam.eye, cam.target, w.t, alive ? d : -1);
+      if (budget(w, 1, {name}))
+        write(w, name, nullptr, cam.eye, cam.target, w.t, alive ? d : -1,
+              {{"camera", alive ? "driver" : "outside"}, {"vehicle", w.ents.id[d]}});
     }
     next_periodic_ += opt_.every_s;
   }

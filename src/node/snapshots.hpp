@@ -3,7 +3,9 @@
 // frame about 1 s after, both from one camera placed to see the pair, like the thesis's
 // figures A.2-A.9; plus a periodic frame every S seconds from the eye of this node's first live
 // vehicle (never from inside a wreck; with none alive, from outside above the first wreck).
-// Files NNNN-<kind>-<a>-<b>-imminent.png / -result.png, each logged as a `snapshot` event.
+// Files NNNN-<kind>-<a>-<b>-imminent.png / -result.png, each logged as a `snapshot` event;
+// periodic ones NNNN-periodic-tSSSSS.S.png, whose event also says `camera` ("driver" or
+// "outside") and `vehicle` (the one it follows).
 //
 // Budget: at most max_frames frames per run and max_per_minute in any 60 s of scenario time.
 // A frame over budget is not rendered; it is logged as a `snapshot_skipped` event (`file`,
@@ -76,7 +78,7 @@ class Snapshots {
   };
   static constexpr int kDriven = -2;  // hud_entity: the driven vehicle's HUD
   void write(const world::World& w, const std::string& name, const State* past, const Vec3& eye,
-             const Vec3& target, double t, int hud_entity = kDriven);
+             const Vec3& target, double t, int hud_entity = kDriven, const nlohmann::json& extra = {});
   int driven(const world::World& w) const;
   // The buffered state of scenario time `t` (interpolated), or the oldest one; null when none.
   const State* past_state(double t);

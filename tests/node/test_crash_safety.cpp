@@ -18,18 +18,23 @@ extern char** environ;
 namespace fs = std::filesystem;
 
 namespace {
-// Starts npsnet with `args`, kills it with SIGKILL after `ms` milliseconds (if still running).
-// Returns false when it had already ended.
-bool run_and_kill(std::vector<std::string> args, int ms) {
+// Starts npsnet with `args`; once `ready()` (polled, at most 60 s) kills it with SIGKILL after
+// `ms` more milliseconds. Returns false when it had already ended.
+template <class Ready>
+bool run_and_kill(std::vector<std::string> args, Ready ready, int ms) {
   args.insert(args.begin(), std::string(NPSNET_BINARY_DIR) + "/npsnet");
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   pid_t pid = 0;
   if (posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return false;
+  int st = 0;
+  for (int i = 0; i < 6000 && !ready(); ++i) {
+    if (waitpid(pid, &st, WNOHANG) == pid) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
   std::this_thread::sleep_for(std::chrono::milliseconds(ms));
   const bool killed = kill(pid, SIGKILL) == 0;
-  int st = 0;
   waitpid(pid, &st, 0);
   return killed && WIFSIGNALED(st);
 }
@@ -62,9 +67,17 @@ void expect_whole_lines(const fs::path& log, int& lines) {
 TEST(CrashSafety, KilledAtAnyMomentLeavesWholeLinesAndWholePngs) {
   const auto dir = fs::temp_directory_path() / "npsnet-tests" / "crash";
   int killed = 0, lines = 0, pngs = 0;
-  // Kill times spread over start-up, the rendered Appendix A cases and a long headless run.
+  auto count_pngs = [&] {
+    int n = 0;
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+      n += it->path().extension() == ".png";
+    return n;
+  };
+  // Kill times spread over start-up, the rendered Appendix A cases and a long headless run:
+  // after the k-th PNG (or the first lines of the log) and some milliseconds more.
   for (int k = 0; k < 12; ++k) {
-    const int ms = 40 + 137 * k;
+    const int ms = (37 * k) % 150;
     fs::remove_all(dir);
     std::vector<std::string> args = {"run", "--quiet", "--snapshots", dir.string()};
     if (k % 2) {
@@ -72,7 +85,11 @@ TEST(CrashSafety, KilledAtAnyMomentLeavesWholeLinesAndWholePngs) {
     } else {
       args.insert(args.end(), {"--size", "320x180", "--snapshot-every", "0.5"});
     }
-    killed += run_and_kill(args, ms);
+    if (k % 2) {
+      killed += run_and_kill(args, [&] { std::error_code ec; return fs::file_size(dir / "events.jsonl", ec) > 2000 * static_cast<unsigned>(k) && !ec; }, ms);
+    } else {
+      killed += run_and_kill(args, [&] { return count_pngs() >= 1 + k / 2; }, ms);
+    }
     if (!fs::exists(dir)) continue;
     if (fs::exists(dir / "events.jsonl")) expect_whole_lines(dir / "events.jsonl", lines);
     for (const auto& e : fs::directory_iterator(dir))
