@@ -9,9 +9,11 @@
 #
 # Every node runs `npsnet run --net udp://239.1.2.3:PORT --iface <its address> --ttl 8 --aoi CELL`
 # in its own namespace on tests/multinode/data/multisite.toml; the router forwards the exercise's
-# groups (239.1.0.0/16) between the three sites with static (*,G) routes (smcrouted). The site
-# links are shaped with netem (30 ms, 1 % loss) when the kernel has sch_netem, else with tbf
-# (10 Mbit/s) only, and the script says so. Everything it creates (namespaces, bridges, veths,
+# groups (239.1.0.0/16) between the three sites with static (*,G) routes (smcrouted). Each site
+# link delays every frame by DELAY ms and loses LOSS % of them, each way: with netem when the
+# kernel has sch_netem, else in user space (scripts/linkshaper.py: a TAP pair and a forwarding
+# process instead of the veth pair), else (no python3 or /dev/net/tun) unshaped except a tbf
+# 10 Mbit/s rate; the script says which. Everything it creates (namespaces, bridges, veths,
 # the daemon, the nodes) is named with a per-run prefix and removed by name on exit (trap).
 #
 # The nodes run with NPSNET_DIS_TIMEOUT_S=4.8 (heartbeat 2 s; override by setting it): a kernel
@@ -20,8 +22,9 @@
 # are dropped and the entity is heard at its next heartbeat.
 #
 # Usage: scripts/multisite.sh [--short] [--nodes N] [--seconds S] [--aoi CELL_M|0] [--out DIR]
-#                             [--scenario FILE]
-#   --short      2 nodes a site, 8 s (the ctest run)
+#                             [--scenario FILE] [--delay-ms D] [--loss PERCENT]
+#   --short      2 nodes a site, 8 s, no loss (the ctest run: a lost Detonation is never sent again)
+#   --delay-ms, --loss   each site link, each way (default 30 ms, 1 %)
 #   --nodes N    nodes a site (1-4, default 4: 12 nodes); the scenario's node numbers are
 #                4 x (site - 1) + k, k = 1..N
 #   --aoi        cell size in metres (default 2000); 0 runs without area of interest
@@ -38,15 +41,19 @@ SECONDS_RUN=20
 AOI=2000
 OUT=""
 SCENARIO="$ROOT/tests/multinode/data/multisite.toml"
+DELAY=30
+LOSS=1
 while [ $# -gt 0 ]; do
   case "$1" in
-    --short) NODES=2; SECONDS_RUN=8 ;;
+    --short) NODES=2; SECONDS_RUN=8; LOSS=0 ;;
+    --delay-ms) DELAY="$2"; shift ;;
+    --loss) LOSS="$2"; shift ;;
     --nodes) NODES="$2"; shift ;;
     --seconds) SECONDS_RUN="$2"; shift ;;
     --aoi) AOI="$2"; shift ;;
     --out) OUT="$2"; shift ;;
     --scenario) SCENARIO="$2"; shift ;;
-    -h|--help) sed -n '2,31p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,34p' "$0"; exit 0 ;;
     *) echo "multisite: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -68,15 +75,19 @@ PORT=$(( 20000 + $$ % 40000 ))
 NSLIST=()
 PIDS=()
 DAEMON_PID=""
+SHAPERS=()
 
 cleanup() {
   set +e
   for pid in "${PIDS[@]}"; do kill -KILL "$pid" 2>/dev/null; done
+  for pid in "${SHAPERS[@]}"; do kill -TERM "$pid" 2>/dev/null; wait "$pid" 2>/dev/null; done
   [ -n "$DAEMON_PID" ] && kill -TERM "$DAEMON_PID" 2>/dev/null
   for pid in "${PIDS[@]}" $DAEMON_PID; do wait "$pid" 2>/dev/null; done
   # Links by name first (a veth takes its peer with it), then the namespaces by name.
+  ip -n "$R" link del probe0 2>/dev/null
   for s in 1 2 3; do
     ip -n "$R" link del "r$s" 2>/dev/null
+    ip -n "${P}s$s" link del wan 2>/dev/null
     ip -n "${P}s$s" link del br0 2>/dev/null
     for k in 1 2 3 4; do ip -n "${P}s$s" link del "n$k" 2>/dev/null; done
   done
@@ -90,16 +101,43 @@ newns() { ip netns add "$1"; NSLIST+=("$1"); ip -n "$1" link set lo up; }
 # ---- topology
 newns "$R"
 ip netns exec "$R" sysctl -qw net.ipv4.ip_forward=1
+# How the site links are shaped: netem if the kernel has it, else in user space, else tbf only.
+ip -n "$R" link add probe0 type veth peer name probe1
+if err=$(ip netns exec "$R" tc qdisc add dev probe0 root netem delay 1ms 2>&1); then
+  MODE=netem; SHAPING="netem delay ${DELAY}ms loss ${LOSS}% on both ends of each site link"
+elif command -v python3 >/dev/null && [ -c /dev/net/tun ]; then
+  MODE=user; SHAPING="user space (scripts/linkshaper.py): ${DELAY} ms, ${LOSS} % loss each way on each site link"
+else
+  MODE=tbf; SHAPING="tbf rate 10mbit only: no delay, no loss"
+fi
+ip -n "$R" link del probe0
+[ "$MODE" = netem ] || echo "multisite: netem unavailable ('$err'): this kernel has no sch_netem; site links shaped $SHAPING" >&2
 for s in 1 2 3; do
   S="${P}s$s"
   newns "$S"
   ip -n "$S" link add br0 type bridge mcast_snooping 0   # a plain LAN: multicast floods
   ip -n "$S" link set br0 up
-  ip link add "r$s" netns "$R" type veth peer name wan netns "$S"
+  if [ "$MODE" = user ]; then   # TAP wan (site) <-> TAP r$s (router), frames carried by linkshaper.py
+    rm -f "$OUT/linkshaper_s$s.log"   # a log of an earlier run in the same --out must not say ready
+    ip netns exec "$S" python3 "$ROOT/scripts/linkshaper.py" wan "r$s" "$R" "$DELAY" "$LOSS" "$s" \
+      > "$OUT/linkshaper_s$s.log" 2>&1 &
+    SHAPERS+=($!)
+    for _ in $(seq 1 50); do grep -qs ready "$OUT/linkshaper_s$s.log" && break; sleep 0.1; done
+    grep -q ready "$OUT/linkshaper_s$s.log" || { cat "$OUT/linkshaper_s$s.log" >&2; exit 1; }
+  else
+    ip link add "r$s" netns "$R" type veth peer name wan netns "$S"
+  fi
   ip -n "$S" link set wan master br0
   ip -n "$S" link set wan up
   ip -n "$R" addr add "10.214.$s.1/24" dev "r$s"
   ip -n "$R" link set "r$s" up
+  if [ "$MODE" = netem ]; then
+    ip netns exec "$R" tc qdisc add dev "r$s" root netem delay "${DELAY}ms" loss "${LOSS}%"
+    ip netns exec "$S" tc qdisc add dev wan root netem delay "${DELAY}ms" loss "${LOSS}%"
+  elif [ "$MODE" = tbf ]; then
+    ip netns exec "$R" tc qdisc add dev "r$s" root tbf rate 10mbit burst 32kbit latency 100ms
+    ip netns exec "$S" tc qdisc add dev wan root tbf rate 10mbit burst 32kbit latency 100ms
+  fi
   for k in $(seq 1 "$NODES"); do
     N="${P}s${s}n$k"
     newns "$N"
@@ -111,23 +149,34 @@ for s in 1 2 3; do
     ip -n "$N" route add default via "10.214.$s.1"
   done
 done
-
-# ---- shaping of the site links (router side r1..r3 and site side `wan`)
-SHAPING="netem delay 30ms loss 1%"
-if ! err=$(ip netns exec "$R" tc qdisc add dev r1 root netem delay 30ms loss 1% 2>&1); then
-  echo "multisite: netem unavailable ('$err'): this kernel has no sch_netem; site links shaped" \
-       "with tbf 10 Mbit/s only (no delay, no loss)" >&2
-  SHAPING="tbf rate 10mbit burst 32kbit latency 100ms (no netem: $err)"
-  for s in 1 2 3; do
-    ip netns exec "$R" tc qdisc add dev "r$s" root tbf rate 10mbit burst 32kbit latency 100ms
-    ip netns exec "${P}s$s" tc qdisc add dev wan root tbf rate 10mbit burst 32kbit latency 100ms
-  done
-else
-  ip netns exec "$R" tc qdisc add dev r2 root netem delay 30ms loss 1%
-  ip netns exec "$R" tc qdisc add dev r3 root netem delay 30ms loss 1%
-  for s in 1 2 3; do ip netns exec "${P}s$s" tc qdisc add dev wan root netem delay 30ms loss 1%; done
-fi
 echo "$SHAPING" > "$OUT/shaping.txt"
+# What the shaping gives: site 1 -> site 2 round trip (4 link crossings), a UDP echo through the
+# router (python3; median of 5).
+RTT=""
+if command -v python3 >/dev/null; then
+  ip netns exec "${P}s2n1" timeout 5 python3 -c '
+import socket
+s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM); s.bind(("10.214.2.11", 7)); s.settimeout(4)
+try:
+    while True:
+        d, a = s.recvfrom(64); s.sendto(d, a)
+except OSError:
+    pass' &
+  ECHO_PID=$!
+  sleep 0.5
+  RTT=$(ip netns exec "${P}s1n1" timeout 5 python3 -c '
+import socket, time
+s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM); s.settimeout(1); r = []
+for i in range(5):
+    t = time.monotonic(); s.sendto(b"x", ("10.214.2.11", 7))
+    try:
+        s.recvfrom(64); r.append((time.monotonic() - t) * 1000)
+    except OSError:
+        pass
+print("%.1f ms (%d of 5 answered)" % (sorted(r)[len(r) // 2], len(r)) if r else "")' || true)
+  kill "$ECHO_PID" 2>/dev/null; wait "$ECHO_PID" 2>/dev/null || true
+fi
+echo "multisite: site 1 -> site 2 UDP round trip: ${RTT:-no answer}" >&2
 
 # ---- the multicast router: static (*,G) routes for the exercise's groups between the sites
 cat > "$OUT/smcroute.conf" <<EOF

@@ -1,10 +1,12 @@
 // The routed multi-site exercise, short version (scripts/multisite.sh --short): three sites in
 // network namespaces, two nodes each on a bridge, joined by a router namespace running smcrouted
-// with static (*,G) routes, every node with --aoi 2000. Every node's event log must hold the
-// cross-site collision s1t1/s2a1 once with the same outcomes (decided at site 1) and the crater of
-// site 3's round at the same place. Skips where namespaces or smcroute are not available (the
-// script exits 77); the script is bounded (its nodes run 8 s, it kills them 30 s later) and the
-// test gives it 120 s in all, then kills it (its trap removes the namespaces by name).
+// with static (*,G) routes; site links delayed 30 ms each way (netem, or scripts/linkshaper.py in
+// user space where the kernel has no netem; no loss in this short run); every node with
+// --aoi 2000. Every node's event log must hold the cross-site collision s1t1/s2a1 once with the
+// same outcomes (decided at site 1) and the crater of site 3's round at the same place. Skips
+// where namespaces or smcroute are not available (the script exits 77); the script is bounded
+// (its nodes run 8 s, it kills them 30 s later) and the test gives it 110 s, then SIGTERM (its
+// trap removes the namespaces by name) and 10 s later SIGKILL.
 #include <gtest/gtest.h>
 
 #include <set>
