@@ -23,9 +23,19 @@ Result<Marking, std::string> make_marking(std::string_view text) {
 
 std::string marking_text(const Marking& m) {
   std::string s;
-  for (char c : m.characters) {
-    if (c == '\0') break;
-    s.push_back(c);
+  for (char ch : m.characters) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c == 0) break;
+    if (m.character_set == kMarkingDigitChevron && c <= 9) {
+      s.push_back(static_cast<char>('0' + c));
+    } else if (c >= 0x20 && c <= 0x7E) {
+      s.push_back(static_cast<char>(c));
+    } else if (c >= 0xA0) {  // Latin-1: U+00A0..U+00FF in two UTF-8 octets
+      s.push_back(static_cast<char>(0xC0 | (c >> 6)));
+      s.push_back(static_cast<char>(0x80 | (c & 0x3F)));
+    } else {  // U+FFFD REPLACEMENT CHARACTER
+      s += "\xEF\xBF\xBD";
+    }
   }
   return s;
 }

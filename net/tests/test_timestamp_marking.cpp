@@ -1,5 +1,6 @@
 // DIS timestamps (relative / absolute) and ASCII markings.
 #include <gtest/gtest.h>
+#include <cstring>
 
 #include "test_util.hpp"
 
@@ -56,4 +57,19 @@ TEST(Marking, RejectsLongAndNonAscii) {
   auto bad = net::make_marking("t\xC3\xA4nk");
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.error().find("not printable ASCII"), std::string::npos) << bad.error();
+}
+
+TEST(Marking, DecodedByCharacterSetIntoSafeUtf8) {
+  net::Marking m;
+  const unsigned char b[11] = {'T', 0xC4, 'N', 'K', 0x01, 0x7F, 0x85, 0xFF, '"', 0, 'x'};
+  std::memcpy(m.characters.data(), b, sizeof b);
+  EXPECT_EQ(net::marking_text(m), "T\xC3\x84NK\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD\xC3\xBF\"");
+  net::Marking c;
+  c.character_set = net::kMarkingDigitChevron;
+  const unsigned char d[3] = {1, 2, '3'};
+  std::memcpy(c.characters.data(), d, sizeof d);
+  EXPECT_EQ(net::marking_text(c), "123");
+  net::Marking full;  // 11 characters, no NUL: all 11, nothing past them
+  full.characters.fill('A');
+  EXPECT_EQ(net::marking_text(full), std::string(11, 'A'));
 }

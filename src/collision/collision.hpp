@@ -164,7 +164,9 @@ int fixed_damage_level(double momentum, double resistance);
 void respond(const world::World& w, const std::vector<Contact>& contacts, world::Changes& out);
 // A munition detonates at `point`: on an entity (`hit` >= 0) it kills it and leaves the ground
 // untouched (p. 15); on the ground it makes a crater; either way objects and vehicles within the
-// blast radius are damaged, more the nearer they are.
+// blast radius are damaged, more the nearer they are. Only entities of this node (ents.local)
+// are damaged: a remote entity's damage is decided by its owner; fixed objects only when
+// d.decides_fixed (this node's round: the firing node publishes the objects it changed).
 void detonate(const world::World& w, int munition, const Vec3& point, int hit, world::Changes& out);
 // The same for a detonation described by `d` (d.kind the munition kind, d.target the entity hit
 // or -1); d.munition, when >= 0, is the local round spent by it; -1 for another node's round.

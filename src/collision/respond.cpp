@@ -143,8 +143,9 @@ bool vehicle_vs_vehicle_band(const world::World& w, const Contact& c, world::Cha
   } else {
     rec.result_a = rec.result_b = Result::Stop;
   }
-  if (!ents.local[a]) ca.set_vel = false, ca.shift = Vec3::Zero();  // remote entities are moved by their owner
-  if (!ents.local[b]) cb.set_vel = false, cb.shift = Vec3::Zero();
+  // Remote entities are moved and damaged by their owner (it shows its decision in its appearance).
+  if (!ents.local[a]) ca.set_vel = false, ca.shift = Vec3::Zero(), ca.to_state = -1;
+  if (!ents.local[b]) cb.set_vel = false, cb.shift = Vec3::Zero(), cb.to_state = -1;
   out.entities.push_back(ca);
   out.entities.push_back(cb);
   return true;
@@ -265,12 +266,13 @@ void detonate(const world::World& w, const world::DetonationRecord& d, world::Ch
   out.detonations.push_back(d);
   if (hit >= 0) {
     // "the same round striking a tank would destroy the tank and have no effect on the ground"
+    // (its damage is its owner's to decide: a remote target is left to its node)
     world::EntityChange k;
     k.entity = hit;
     k.to_state = last_state(w.kinds[ents.kind[hit]]);
     k.set_vel = true;
     k.cruise_mps = 0;
-    out.entities.push_back(k);
+    if (ents.local[hit]) out.entities.push_back(k);
   } else {
     const double agl = point.z() - w.terrain.height(point.x(), point.y());
     if (agl < km.crater_radius_m) out.craters.push_back({point, km.crater_radius_m, km.crater_depth_m});
@@ -279,7 +281,7 @@ void detonate(const world::World& w, const world::DetonationRecord& d, world::Ch
   const double R = km.blast_radius_m;
   if (R <= 0) return;
   auto levels = [&](double d) { return d < R / 3 ? 3 : d < 2 * R / 3 ? 2 : d < R ? 1 : 0; };
-  w.grid.for_each_near(w.fixed, point.x(), point.y(), R, [&](int o) {
+  if (d.decides_fixed) w.grid.for_each_near(w.fixed, point.x(), point.y(), R, [&](int o) {
     const int lv = levels((w.fixed.pos[o] - point).norm());
     const world::Kind& k = w.kinds[w.fixed.kind[o]];
     if (lv == 0 || k.resistance > 100) return;  // out of reach, or a rock
@@ -287,7 +289,7 @@ void detonate(const world::World& w, const world::DetonationRecord& d, world::Ch
     out.fixed.push_back({o, lv == 3 ? ls : std::min(ls, w.fixed.state[o] + lv)});
   });
   for (int e = 0; e < static_cast<int>(ents.size()); ++e) {
-    if (e == munition || e == hit || !ents.active[e]) continue;
+    if (e == munition || e == hit || !ents.active[e] || !ents.local[e]) continue;  // remote: its owner decides
     const world::Kind& k = w.kinds[ents.kind[e]];
     if (k.mobility == Mobility::Munition) continue;
     const int lv = levels((world::entity_centre(w, e) - point).norm());

@@ -49,7 +49,9 @@ void EventLog::write(const nlohmann::json& event) {
   counts_[event.value("event", "?")] += 1;
   if (keep_) kept_.push_back(event);
   if (fd_ < 0) return;
-  buf_ += event.dump();
+  // Any byte that is not UTF-8 is written as U+FFFD, never thrown on (strings from the network
+  // are decoded before they get here; this is the last line of defence).
+  buf_ += event.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   buf_ += '\n';
 }
 

@@ -4,6 +4,7 @@
 // kernel in one write(2), so a node killed at any moment leaves only complete lines; a failed
 // or short write (disk full, /dev/full, I/O error) is cut back to the last whole line and
 // thrown as OutputError naming the file.
+// A string that is not valid UTF-8 is written with U+FFFD in place of the bad bytes (never throws).
 #pragma once
 #include <nlohmann/json.hpp>
 

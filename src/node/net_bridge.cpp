@@ -19,6 +19,10 @@ constexpr double kDeg = kPi / 180.0;
 // A receiver drains its socket once a tick: 128 datagrams fit its default receive buffer
 // (Linux rmem_default 208 KiB), where the 517 first Entity States of the default scenario did not.
 constexpr size_t kMaxDatagramsPerTick = 128;
+// Received values past these are corrupt or hostile: a speed (m/s) and the offset of a contact
+// point from its entity (m).
+constexpr double kMaxSpeedMps = 1e4;
+constexpr double kMaxContactOffsetM = 1000.0;
 
 double round3(double v) { return std::round(v * 1000.0) / 1000.0; }
 Eigen::Vector3d ev(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
@@ -204,7 +208,7 @@ void NetBridge::on_collision(const net::CollisionPdu& p) {
   const Vec3 other_pos = ents.pos[other];
   Eigen::Vector3d ve(p.velocity.x, p.velocity.y, p.velocity.z);
   Vec3 v_other = ents.vel[other];
-  if (ve.allFinite()) {
+  if (ve.allFinite() && ve.norm() < kMaxSpeedMps) {
     const Vec3 ecef = frame.to_ecef(other_pos);
     v_other = frame.from_ecef(ecef + vv(ve)) - other_pos;
   }
@@ -216,8 +220,10 @@ void NetBridge::on_collision(const net::CollisionPdu& p) {
   rec.b = std::max(own, other);
   const double h = ents.heading_deg[other] * kDeg;
   const Vec3 fwd(std::sin(h), std::cos(h), 0), right(std::cos(h), -std::sin(h), 0);
-  rec.point = other_pos + fwd * p.location_in_entity.x + right * p.location_in_entity.y -
-              Vec3::UnitZ() * p.location_in_entity.z;
+  const Vec3 loc(p.location_in_entity.x, p.location_in_entity.y, p.location_in_entity.z);
+  rec.point = loc.allFinite() && loc.norm() < kMaxContactOffsetM
+                  ? Vec3(other_pos + fwd * loc.x() + right * loc.y() - Vec3::UnitZ() * loc.z())
+                  : Vec3((other_pos + ents.pos[own]) / 2);
   rec.closing_speed_mps = std::max(0.0, (v_other - ents.vel[own]).dot(n));
   rec.angle_deg = collision::impact_angle_deg(ents.heading_deg[rec.a], ents.heading_deg[rec.b]);
   rec.method = "network";
@@ -240,13 +246,9 @@ void NetBridge::on_collision(const net::CollisionPdu& p) {
   } else {
     mine.vel = Vec3::Zero();
     mine.cruise_mps = third ? -1.f : 0.f;
-    if (res == world::Result::Kill) {
-      mine.to_state = static_cast<int>(w.kinds[ents.kind[own]].states.size()) - 1;
-      world::EntityChange theirs;
-      theirs.entity = other;
-      theirs.to_state = static_cast<int>(w.kinds[ents.kind[other]].states.size()) - 1;
-      inject_.entities.push_back(theirs);
-    }
+    // Our entity's damage is ours to decide; the issuer's (and a third node's copy) arrive in
+    // their owners' appearance.
+    if (res == world::Result::Kill && !third) mine.to_state = static_cast<int>(w.kinds[ents.kind[own]].states.size()) - 1;
   }
   inject_.entities.push_back(mine);
   sim_.inject(inject_);
@@ -277,7 +279,7 @@ void NetBridge::on_detonation(const net::DetonationPdu& p) {
   const Eigen::Vector3d loc(p.location.x, p.location.y, p.location.z);
   if (!loc.allFinite()) return;
   const Vec3 point = w.terrain.frame().from_ecef(vv(loc));
-  if (!std::isfinite(point.x()) || !w.terrain.contains(point.x(), point.y())) return;
+  if (!point.allFinite() || !w.terrain.contains(point.x(), point.y())) return;
   const int mk = munition_kind_for(w.kinds, p.descriptor.munition_type);
   if (mk < 0) return;
   int hit = -1;
@@ -294,6 +296,7 @@ void NetBridge::on_detonation(const net::DetonationPdu& p) {
   d.target = hit;
   d.point = point;
   d.result = hit >= 0 ? "entity_impact" : "ground_impact";
+  d.decides_fixed = false;  // the firing node publishes the fixed objects its round changed
   sim_.inject_detonation(d);
 }
 

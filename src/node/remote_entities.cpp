@@ -9,6 +9,11 @@ namespace npsnet::node {
 namespace {
 Vec3 vv(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 bool finite3(const Eigen::Vector3d& v) { return v.allFinite(); }
+// A remote pose the world can hold: finite, within 1000 km of the frame's origin, slower than
+// 10 km/s. Anything else (corrupt or hostile PDUs) leaves the entity where it was.
+bool usable(const Vec3& p, const Vec3& v, const Vec3& hpr) {
+  return p.allFinite() && v.allFinite() && hpr.allFinite() && p.norm() < 1e6 && v.norm() < 1e4;
+}
 double round3(double v) { return std::round(v * 1000.0) / 1000.0; }
 }  // namespace
 
@@ -55,20 +60,31 @@ void RemoteEntities::on_entity_state(const net::EntityStatePdu& p, double now_s)
     if (auto i = table_.find(p.entity_id)) joined(*i);
   } else if (r == net::RemoteEntityTable::ApplyResult::Deactivated) {
     const int e = index_of(p.entity_id);
-    if (e >= 0) sim_.world().ents.active[e] = 0, sim_.world().ents.vel[e] = Vec3::Zero();
+    if (e >= 0 && sim_.world().ents.active[e]) {
+      auto& ents = sim_.world().ents;
+      ents.active[e] = 0, ents.vel[e] = Vec3::Zero();
+      auto ev = event("entity_removed");  // its owner took it out of the exercise
+      ev["id"] = ents.id[e];
+      ev["entity"] = id_text(p.entity_id);
+      ev["marking"] = net::marking_text(p.marking);
+      ev["kind"] = sim_.world().kinds[ents.kind[e]].name;
+      ev["state"] = sim_.world().kinds[ents.kind[e]].states[ents.state[e]];
+      log_.write(ev);
+    }
     return;
   }
-  // Damage that arrives in the appearance (states only move forward).
+  // Damage is the owner's: shown as its appearance says, also when it goes back (a repair).
   const int e = index_of(p.entity_id);
   if (e < 0) return;
   const auto& w = sim_.world();
   const int k = kind_for(e, p.entity_type);
   if (k < 0) return;
   const int to = state_from_appearance(w.kinds[k], p.appearance);
-  if (to > w.ents.state[e]) {
+  if (to != w.ents.state[e]) {
     world::EntityChange ch;
     ch.entity = e;
     ch.to_state = to;
+    ch.owner_state = true;
     inject(ch);
   }
 }
@@ -160,7 +176,7 @@ void RemoteEntities::set_poses(double now_s) {
     const Vec3 p = frame.from_ecef(vv(pose.position));
     const Vec3 hpr = frame.from_dis_euler(p, Vec3(pose.orientation.psi, pose.orientation.theta, pose.orientation.phi));
     const Vec3 ahead = frame.from_ecef(vv(pose.position + r.state.velocity));
-    if (!std::isfinite(p.x()) || !std::isfinite(hpr.x())) continue;
+    if (!usable(p, ahead - p, hpr)) continue;
     ents.pos[e] = p;
     ents.vel[e] = ahead - p;
     ents.heading_deg[e] = static_cast<float>(hpr.x());

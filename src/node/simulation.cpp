@@ -126,6 +126,7 @@ void Simulation::log_changes() {
     ev["kind"] = k.name;
     ev["from_state"] = k.states[d.from_state];
     ev["to_state"] = k.states[d.to_state];
+    if (!d.fixed && !ents.local[d.index]) ev["remote"] = true;  // as its owner's Entity State says
     log_.write(ev);
   }
 }

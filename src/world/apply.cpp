@@ -26,7 +26,12 @@ void apply(World& w, const Changes& c, Applied& out) {
     if (ch.to_kind >= 0 && ch.to_kind < w.kinds.size()) ents.kind[e] = static_cast<int16_t>(ch.to_kind);
     const Kind& k = w.kinds[ents.kind[e]];
     const int last = static_cast<int>(k.states.size()) - 1;
-    if (ch.to_state > ents.state[e]) {
+    if (ch.owner_state && ch.to_state >= 0 && std::min(ch.to_state, last) != ents.state[e]) {
+      const int to = std::min(ch.to_state, last);
+      out.damage.push_back({false, e, ents.state[e], to});
+      ents.state[e] = static_cast<uint8_t>(to);
+      if (to == last && k.mobility != Mobility::Munition) out.killed.push_back(e);
+    } else if (!ch.owner_state && ch.to_state > ents.state[e]) {
       const int to = std::min(ch.to_state, last);
       out.damage.push_back({false, e, ents.state[e], to});
       ents.state[e] = static_cast<uint8_t>(to);

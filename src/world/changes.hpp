@@ -17,7 +17,9 @@ struct EntityChange {
   int entity = -1;
   int to_kind = -1;           // -1: unchanged; else the kind the owner's Entity State names
                               // (applied first, before to_state)
-  int to_state = -1;          // -1: unchanged; states only ever move forward
+  int to_state = -1;          // -1: unchanged; states only ever move forward, except:
+  bool owner_state = false;   // to_state is what the entity's owner (another node) says: set
+                              // as it is, also backwards (a repair)
   bool set_vel = false;
   Vec3 vel{0, 0, 0};          // new velocity (m/s) when set_vel
   float cruise_mps = -1;      // new wanted speed; -1: unchanged
@@ -55,6 +57,7 @@ struct DetonationRecord {
   int target = -1;            // entity hit, or -1 for the ground
   Vec3 point{0, 0, 0};
   std::string result;         // "entity_impact", "ground_impact"
+  bool decides_fixed = true;  // this node decides the blast damage of fixed objects (its round)
 };
 
 struct Changes {
@@ -81,7 +84,8 @@ struct Applied {
   void clear() { damage.clear(), terrain_patches.clear(), killed.clear(); }
 };
 
-// Applies the changes in order; a state never moves backwards; a crater lowers the terrain and
+// Applies the changes in order; a state never moves backwards (except an owner_state of a remote
+// entity, which is set as its owner says); a crater lowers the terrain and
 // re-seats fixed objects standing in it. Appends what happened to `out`.
 void apply(World& w, const Changes& c, Applied& out);
 

@@ -24,7 +24,11 @@ double unix_now() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
-std::filesystem::path npsnet_binary() { return std::filesystem::path(NPSNET_BINARY_DIR) / "npsnet"; }
+std::filesystem::path npsnet_binary() {
+  // NPSNET_TEST_BINARY: run the tests against another build (e.g. an older one, to see a test fail).
+  if (const char* b = std::getenv("NPSNET_TEST_BINARY"); b && *b) return b;
+  return std::filesystem::path(NPSNET_BINARY_DIR) / "npsnet";
+}
 
 std::filesystem::path fresh_dir(const std::string& tag) {
   std::random_device rd;

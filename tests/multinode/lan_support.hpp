@@ -15,7 +15,7 @@ namespace lan {
 int random_port();
 // Wall clock, UNIX seconds.
 double unix_now();
-// <build>/npsnet
+// <build>/npsnet, or $NPSNET_TEST_BINARY when set
 std::filesystem::path npsnet_binary();
 // A fresh empty folder under the system temp folder.
 std::filesystem::path fresh_dir(const std::string& tag);

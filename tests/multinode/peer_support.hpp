@@ -1,0 +1,90 @@
+// A node under test and a DIS peer beside it on loopback multicast (127.0.0.1, a random port):
+// the federate tests (test_federate_*.cpp) start `npsnet run --net` with a scenario of
+// tests/multinode/data, send it PDUs from a net::Session (application 50) and read what it sent
+// back and what it logged. Every wait is bounded in time.
+#pragma once
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "lan_support.hpp"
+#include "net/net.hpp"
+#include "world/scenario.hpp"
+
+namespace fed {
+
+inline const std::filesystem::path kData = std::filesystem::path(NPSNET_SOURCE_DIR) / "tests" / "multinode" / "data";
+
+struct Node {
+  std::filesystem::path dir, events, out;
+  int port = 0;
+  double start = 0;  // UNIX time the scenario clock starts
+  int pid = -1;
+};
+
+// Starts node 1 on `scenario` for `seconds`, starting `lead_s` from now.
+inline Node start_node(lan::Procs& procs, const std::string& tag, const std::string& scenario, double seconds,
+                       std::vector<std::string> extra = {}, std::vector<std::string> env = {}, double lead_s = 1.0) {
+  Node n;
+  n.dir = lan::fresh_dir(tag);
+  n.port = lan::random_port();
+  n.start = lan::unix_now() + lead_s;
+  n.events = n.dir / "events.jsonl";
+  n.out = n.dir / "out.txt";
+  char s[64];
+  std::snprintf(s, sizeof s, "%.3f", n.start);
+  std::vector<std::string> args{"run", "--scenario", (kData / scenario).string(), "--net",
+                                "udp://239.1.2.3:" + std::to_string(n.port), "--iface", "127.0.0.1", "--node", "1",
+                                "--start-at", s, "--no-render", "--seconds", std::to_string(seconds), "--events",
+                                n.events.string(), "--snapshots", (n.dir / "snap").string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  n.pid = procs.start(args, n.out, env);
+  return n;
+}
+
+// The peer: application 50 on site 1, same exercise. Its own echo is dropped by its session.
+inline net::SessionConfig peer_config(int port, std::uint16_t app = 50) {
+  net::SessionConfig cfg;
+  cfg.transport.url = "udp://239.1.2.3:" + std::to_string(port);
+  cfg.transport.iface = "127.0.0.1";
+  cfg.application = app;
+  return cfg;
+}
+
+// The world of a scenario, for positions (local frame <-> ECEF).
+inline npsnet::world::World world_of(const std::string& scenario) {
+  return npsnet::world::build_world(npsnet::world::load_scenario(kData / scenario));
+}
+inline net::Vec3d ecef(const npsnet::world::World& w, double x, double y, double agl = 0) {
+  const auto p = w.terrain.frame().to_ecef(npsnet::Vec3(x, y, w.terrain.height(x, y) + agl));
+  return {p.x(), p.y(), p.z()};
+}
+inline npsnet::Vec3 local(const npsnet::world::World& w, const net::Vec3d& e) {
+  return w.terrain.frame().from_ecef(npsnet::Vec3(e.x, e.y, e.z));
+}
+
+// Sleeps until UNIX time t (bounded by the caller's schedule).
+inline void sleep_until(double t) {
+  while (lan::unix_now() < t) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+}
+
+// Polls `peer` until UNIX time t, handing every datagram's PDUs to `visit`.
+template <class V>
+void poll_until(net::Session& peer, double t, V&& visit) {
+  do {
+    peer.poll(visit);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  } while (lan::unix_now() < t);
+}
+
+inline std::vector<nlohmann::json> of_type(const std::vector<nlohmann::json>& evs, const std::string& type) {
+  std::vector<nlohmann::json> r;
+  for (const auto& e : evs)
+    if (e.value("event", "") == type) r.push_back(e);
+  return r;
+}
+
+}  // namespace fed
