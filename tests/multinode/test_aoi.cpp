@@ -133,6 +133,10 @@ TEST(AoiExercise, VehicleFlyingInIsShownBeforeItComesWithinRange) {
   std::printf("f2 shown on node 1 at t = %.1f s, %.0f m from w1\n", seen_at, distance(seen_at));
   EXPECT_GT(seen_at, 1.0) << "not heard at the start (8.5 km, outside w1's area of interest)";
   EXPECT_GT(distance(seen_at), 5000.0) << "shown before it comes within w1's 5 km sensor range (t = " << seen_at << ")";
+  // w1 joins the cells within 5 km + (16.7 + 277.8) m/s x 5 s = 6.47 km: cell x 10-12 km is the
+  // first f2 meets, at 7 km (t = 5.4 s). f2 flies straight, so its heartbeats (t = 5, 10 s) find
+  // it at 12.1 and 10.7 km: only the announcement on entering a cell shows it near 7 km.
+  EXPECT_GT(distance(seen_at), 6500.0) << "announced in its new cell at once, not at its next heartbeat";
   EXPECT_LT(distance(seen_at), 5000.0 + (1000.0 / 3.6 + 60.0 / 3.6) * 5.0 + 2000.0 * std::sqrt(2.0))
       << "and not before its cell is within range + margin";
   // Node 2's f16 sees 20 km: it hears w1 from the start.
