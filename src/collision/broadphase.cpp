@@ -2,6 +2,7 @@
 #include "collision/broadphase.hpp"
 
 #include <algorithm>
+#include <cassert>
 
 namespace npsnet::collision {
 
@@ -69,8 +70,10 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
     for (int32_t y = j0; y <= j1; ++y)
       for (int32_t x = i0; x <= i1; ++x) entries_[start_[bucket[q++]]++] = Entry{b.lo[0], b.lo[1], b.hi[0], b.hi[1], x, y, i};
   }
+  assert(q == nbucket);
   for (uint32_t h = nb; h > 0; --h) start_[h] = start_[h - 1];
   start_[0] = 0;
+  assert(start_[nb] == entries_.size());
   // Pairs inside each bucket: same cell, reported in the first cell the two boxes share.
   for (uint32_t h = 0; h < nb; ++h) {
     const uint32_t e0 = start_[h], e1 = start_[h + 1];

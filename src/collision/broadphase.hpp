@@ -45,7 +45,6 @@ class MovingGrid {
   // in an order that depends only on the input.
   void pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint32_t, uint32_t>>& out);
   double cell_m() const { return cell_; }
-  size_t large_count() const { return large_.size(); }
 
  private:
   struct Entry {      // 28 bytes: the x, y extent; z and the first cell only for candidates

@@ -50,14 +50,14 @@ struct Contact {
 // The key of a contact episode (moving pairs unordered; fixed contacts flagged).
 uint64_t contact_key(int a, int b, bool b_fixed);
 
-enum class Method : uint8_t { Thesis, Continuous };
+// The names of both live in world/collision_names.hpp (the files that name them are read there).
+using Method = world::CollisionMethod;
 // Shape tiers, cheapest first. Auto: each pair goes up to the highest tier both kinds declare
 // (top_tier) and stops at the first tier that decides it. Capsule is accepted as a name for Box.
-enum class Tier : uint8_t { Auto, Sphere, Box, Hull, Mesh };
+using Tier = world::ShapeTier;
 Method parse_method(const std::string& s);  // "thesis" | "continuous"; throws std::invalid_argument
 Tier parse_tier(const std::string& s);      // "auto" | "sphere" | "capsule" | "box" | "hull" | "mesh"
-const char* method_name(Method m);
-const char* tier_name(Tier t);
+inline const char* tier_name(Tier t) { return world::shape_tier_name(t); }
 // The highest tier a kind declares: its `tiers` list in models/kinds.toml when it has one; else
 // fixed objects and munitions are spheres (the thesis's bounding spheres, p. 9 and p. 15) and
 // vehicles go up to their polygon mesh (the thesis's L3 polygons, p. 15).
@@ -79,8 +79,7 @@ struct DetectStats {
 
 class Detector {
  public:
-  Detector() : Detector(Options{Method::Thesis, Tier::Auto, thesis::kDefaultDtS}) {}  // the reference
-  explicit Detector(const Options& o) : opt_(o) {}
+  explicit Detector(const Options& o = Options{}) : opt_(o) {}
   // Finds the contacts that begin this tick (new episodes) and appends them to `out`, sorted
   // by (time of impact, entity ids) so that the result does not depend on entity order.
   void detect(const world::World& w, std::vector<Contact>& out);

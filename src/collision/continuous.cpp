@@ -11,9 +11,13 @@
 namespace npsnet::collision {
 namespace {
 
-bool finite3(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
-
-bool is_munition(const world::World& w, int e) { return w.kinds[w.ents.kind[e]].mobility == world::Mobility::Munition; }
+// Rejects an entity whose position, velocity or orientation is NaN or infinite.
+void check_finite(const world::Entities& ents, int e) {
+  if (!finite(ents.pos[e]) || !finite(ents.vel[e]) || !std::isfinite(ents.heading_deg[e]) ||
+      !std::isfinite(ents.pitch_deg[e]) || !std::isfinite(ents.roll_deg[e]))
+    throw std::invalid_argument("collision: entity '" + ents.id[e] +
+                                "': position, velocity or orientation is not finite (NaN or infinite)");
+}
 
 const char* method_of(Tier t, bool fixed) {
   switch (t) {
@@ -143,7 +147,7 @@ bool Detector::moving_pair(const world::World& w, int a, int b, const Vec3& c0a,
                            double rba, const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, bool continuing,
                            Contact& k) {
   const auto& ents = w.ents;
-  const bool mun = is_munition(w, a) || is_munition(w, b);
+  const bool mun = w.is_munition(a) || w.is_munition(b);
   const Tier tier = mun ? Tier::Sphere
                         : opt_.tier != Tier::Auto ? opt_.tier
                                                   : std::min(top_tier(w.kinds[ents.kind[a]]), top_tier(w.kinds[ents.kind[b]]));
@@ -167,11 +171,7 @@ bool Detector::moving_pair(const world::World& w, int a, int b, const Vec3& c0a,
 
 bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
   const auto& ents = w.ents;
-  for (int e : {a, b})
-    if (!finite3(ents.pos[e]) || !finite3(ents.vel[e]) || !std::isfinite(ents.heading_deg[e]) ||
-        !std::isfinite(ents.pitch_deg[e]) || !std::isfinite(ents.roll_deg[e]))
-      throw std::invalid_argument("collision: entity '" + ents.id[e] +
-                                  "': position, velocity or orientation is not finite (NaN or infinite)");
+  for (int e : {a, b}) check_finite(ents, e);
   if (opt_.method == Method::Thesis) {
     // L2 then L3 at the end of the tick, as detect_thesis.
     const Vec3 ca = world::entity_centre(w, a), cb = world::entity_centre(w, b);
@@ -208,10 +208,7 @@ void Detector::detect_continuous(const world::World& w) {
   order_.clear();
   for (int e = 0; e < n; ++e) {
     if (!ents.active[e]) continue;
-    if (!finite3(ents.pos[e]) || !finite3(ents.vel[e]) || !std::isfinite(ents.heading_deg[e]) ||
-        !std::isfinite(ents.pitch_deg[e]) || !std::isfinite(ents.roll_deg[e]))
-      throw std::invalid_argument("collision: entity '" + ents.id[e] +
-                                  "': position, velocity or orientation is not finite (NaN or infinite)");
+    check_finite(ents, e);
     order_.push_back(static_cast<uint32_t>(e));
   }
   const size_t m = order_.size();
@@ -220,7 +217,7 @@ void Detector::detect_continuous(const world::World& w) {
     const int e = static_cast<int>(order_[i]);
     c1_[i] = world::entity_centre(w, e);
     c0_[i] = c1_[i] - ents.vel[e] * dt;
-    if (!finite3(c0_[i]))
+    if (!finite(c0_[i]))
       throw std::invalid_argument("collision: entity '" + ents.id[e] + "': velocity * dt overflows");
     r_sphere_[i] = static_cast<float>(world::entity_radius(w, e));
     const Tier top = opt_.tier != Tier::Auto ? opt_.tier : top_tier(w.kinds[ents.kind[e]]);
@@ -256,7 +253,7 @@ void Detector::detect_continuous(const world::World& w) {
       const Tier tier = opt_.tier != Tier::Auto ? opt_.tier : std::min(top_tier(ke), top_tier(ko));
       const Vec3 fc = world::fixed_centre(w, o);  // live: craters re-seat objects
       const double rs = world::fixed_radius(w, o);
-      const bool sphere = tier == Tier::Sphere || is_munition(w, e);
+      const bool sphere = tier == Tier::Sphere || w.is_munition(e);
       const SweepHit h = sphere_sweep(c0_[i], c1_[i], sphere ? r_sphere_[i] : r_bound_[i], fc, fc,
                                       sphere ? rs : std::max<double>(rs, it.r));
       ++stats_.sweep_pairs;
@@ -286,7 +283,7 @@ void Detector::detect_continuous(const world::World& w) {
     int a = static_cast<int>(order_[i]), b = static_cast<int>(order_[j]);
     size_t ia = i, ib = j;
     if (ents.owner[a] == b || ents.owner[b] == a) continue;  // a round never meets its shooter
-    if (is_munition(w, a) && is_munition(w, b)) continue;
+    if (w.is_munition(a) && w.is_munition(b)) continue;
     // Canonical order by id, so that the answer does not depend on where entities are stored.
     if (ents.id[b] < ents.id[a]) std::swap(a, b), std::swap(ia, ib);
     Contact k;

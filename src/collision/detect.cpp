@@ -2,6 +2,7 @@
 // below the threshold height, then moving objects through L1 (100 m window), L2 (spheres) and
 // L3 (rays + Haines). The continuous method is in continuous.cpp.
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 #include "collision/collision.hpp"
@@ -18,11 +19,10 @@ uint64_t pair_key(int a, int b, bool fixed) {
   return (fixed ? (1ull << 63) : 0) | (lo << 31) | hi;
 }
 
-bool is_munition(const world::World& w, int e) { return w.kinds[w.ents.kind[e]].mobility == world::Mobility::Munition; }
-
 }  // namespace
 
 void Detector::detect(const world::World& w, std::vector<Contact>& out) {
+  assert(w.valid());
   touching_.clear();
   candidates_.clear();
   std::sort(previous_.begin(), previous_.end());
@@ -86,7 +86,7 @@ void Detector::detect_thesis(const world::World& w) {
       ++stats_.l1_pairs;
       // A munition never meets its own shooter, nor another munition.
       if (ents.owner[a] == b || ents.owner[b] == a) continue;
-      if (is_munition(w, a) && is_munition(w, b)) continue;
+      if (w.is_munition(a) && w.is_munition(b)) continue;
       // L2: centre distance < sum of radii.
       const Vec3 ca = world::entity_centre(w, a), cb = world::entity_centre(w, b);
       const double rr = world::entity_radius(w, a) + world::entity_radius(w, b);
@@ -98,9 +98,9 @@ void Detector::detect_thesis(const world::World& w) {
       ++stats_.l3_tests;
       bool real;
       const char* method = "L3-haines";
-      if (is_munition(w, a) || is_munition(w, b)) {
+      if (w.is_munition(a) || w.is_munition(b)) {
         real = true;
-        p = is_munition(w, a) ? ca : cb;
+        p = w.is_munition(a) ? ca : cb;
         method = "L2-munition";
       } else {
         real = l3_real(w, a, b, p) || l3_real(w, b, a, p);

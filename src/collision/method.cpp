@@ -7,35 +7,17 @@
 namespace npsnet::collision {
 
 Method parse_method(const std::string& s) {
-  if (s == "thesis") return Method::Thesis;
-  if (s == "continuous") return Method::Continuous;
-  throw std::invalid_argument("collision_method: must be \"continuous\" or \"thesis\" (got '" + s + "')");
+  if (const auto m = world::collision_method_from_name(s)) return *m;
+  throw std::invalid_argument(std::string("collision_method: ") + world::kCollisionMethodChoices + " (got '" + s + "')");
 }
 
 Tier parse_tier(const std::string& s) {
-  if (s == "auto") return Tier::Auto;
-  if (s == "sphere") return Tier::Sphere;
-  if (s == "capsule" || s == "box") return Tier::Box;
-  if (s == "hull") return Tier::Hull;
-  if (s == "mesh") return Tier::Mesh;
-  throw std::invalid_argument("collision_tier: must be one of auto, sphere, capsule, box, hull, mesh (got '" + s + "')");
-}
-
-const char* method_name(Method m) { return m == Method::Thesis ? "thesis" : "continuous"; }
-
-const char* tier_name(Tier t) {
-  switch (t) {
-    case Tier::Auto: return "auto";
-    case Tier::Sphere: return "sphere";
-    case Tier::Box: return "box";
-    case Tier::Hull: return "hull";
-    case Tier::Mesh: return "mesh";
-  }
-  return "?";
+  if (const auto t = world::shape_tier_from_name(s)) return *t;
+  throw std::invalid_argument(std::string("collision_tier: ") + world::kShapeTierChoices + " (got '" + s + "')");
 }
 
 Tier top_tier(const world::Kind& k) {
-  if (k.top_tier > 0) return static_cast<Tier>(k.top_tier);
+  if (k.top_tier != Tier::Auto) return k.top_tier;
   if (k.mobility == world::Mobility::Fixed || k.mobility == world::Mobility::Munition) return Tier::Sphere;
   return Tier::Mesh;
 }

@@ -6,10 +6,6 @@
 #include <stdexcept>
 
 namespace npsnet::collision {
-namespace {
-bool finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
-}  // namespace
-
 SweepHit sphere_sweep(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, const Vec3& b1, double rb) {
   if (!finite(a0) || !finite(a1) || !finite(b0) || !finite(b1) || !std::isfinite(ra) || !std::isfinite(rb))
     throw std::invalid_argument("sphere_sweep: position or radius is not finite (NaN or infinite input)");

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cassert>
 
 #include "world/changes.hpp"
 
@@ -19,9 +20,11 @@ const char* result_name(Result r) {
 }
 
 void apply(World& w, const Changes& c, Applied& out) {
+  assert(w.valid());
   auto& ents = w.ents;
   for (const auto& ch : c.entities) {
     const int e = ch.entity;
+    assert(e >= 0 && e < static_cast<int>(ents.size()));
     if (e < 0 || e >= static_cast<int>(ents.size())) continue;
     if (ch.to_kind >= 0 && ch.to_kind < w.kinds.size()) ents.kind[e] = static_cast<int16_t>(ch.to_kind);
     const Kind& k = w.kinds[ents.kind[e]];
@@ -50,6 +53,7 @@ void apply(World& w, const Changes& c, Applied& out) {
   }
   for (const auto& ch : c.fixed) {
     const int o = ch.object;
+    assert(o >= 0 && o < static_cast<int>(w.fixed.size()));
     if (o < 0 || o >= static_cast<int>(w.fixed.size())) continue;
     const int last = static_cast<int>(w.kinds[w.fixed.kind[o]].states.size()) - 1;
     const int to = std::min(ch.to_state, last);
@@ -67,6 +71,7 @@ void apply(World& w, const Changes& c, Applied& out) {
       w.fixed.pos[o].z() = w.terrain.height(w.fixed.pos[o].x(), w.fixed.pos[o].y());
     });
   }
+  assert(w.valid());
 }
 
 }  // namespace npsnet::world

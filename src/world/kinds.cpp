@@ -129,13 +129,12 @@ KindTable KindTable::load(const std::filesystem::path& file, ModelLibrary& model
     if (k.resistance <= 0) r.problem(t->get("resistance"), p + "resistance", "must be positive");
     if (auto tiers = r.strings(*t, "tiers", p + "tiers", false, tl)) {
       // Collision shape tiers (issue 6; collision/collision.hpp): the highest one listed.
-      static const char* const tier_names[] = {"sphere", "box", "hull", "mesh"};
       for (const auto& tn : *tiers) {
-        int v = tn == "capsule" ? 2 : 0;
-        for (int i = 0; i < 4; ++i)
-          if (tn == tier_names[i]) v = i + 1;
-        if (v == 0) r.problem(t->get("tiers"), p + "tiers", "must list sphere, capsule, box, hull or mesh (got '" + tn + "')");
-        k.top_tier = static_cast<uint8_t>(std::max<int>(k.top_tier, v));
+        const auto v = shape_tier_from_name(tn);
+        if (!v || *v == ShapeTier::Auto)
+          r.problem(t->get("tiers"), p + "tiers", "must list sphere, capsule, box, hull or mesh (got '" + tn + "')");
+        else
+          k.top_tier = std::max(k.top_tier, *v);
       }
     }
     if (k.mobility == Mobility::Munition && k.max_speed_kmh <= 0)

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "world/collision_names.hpp"
 #include "world/model.hpp"
 
 namespace npsnet::world {
@@ -44,9 +45,9 @@ struct Kind {
   double height_m = 0;           // top of the model above ground (from the intact model)
   // fixed objects: momentum scale they withstand (Figure 8 constants x resistance)
   double resistance = 1;
-  // collision shape tiers (`tiers` in kinds.toml): the highest declared, 1 sphere, 2 box
-  // (or capsule), 3 convex hull, 4 polygon mesh; 0 = not declared (collision::top_tier decides)
-  uint8_t top_tier = 0;
+  // collision shape tiers (`tiers` in kinds.toml): the highest declared; Auto = not declared
+  // (collision::top_tier decides)
+  ShapeTier top_tier = ShapeTier::Auto;
 
   int state_index(const std::string& s) const;  // -1 if unknown
   bool mobile() const { return mobility != Mobility::Fixed; }

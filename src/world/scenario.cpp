@@ -44,14 +44,13 @@ Scenario load_scenario(const std::filesystem::path& file) {
     s.duration_s = *v;
   }
   if (auto m = r.string(root, "collision_method", "collision_method", false, 0)) {
-    if (*m != "thesis" && *m != "continuous")
-      r.problem(root.get("collision_method"), "collision_method", "must be \"continuous\" or \"thesis\" (got '" + *m + "')");
+    if (!collision_method_from_name(*m))
+      r.problem(root.get("collision_method"), "collision_method", std::string(kCollisionMethodChoices) + " (got '" + *m + "')");
     s.collision_method = *m;
   }
   if (auto m = r.string(root, "collision_tier", "collision_tier", false, 0)) {
-    if (*m != "auto" && *m != "sphere" && *m != "capsule" && *m != "box" && *m != "hull" && *m != "mesh")
-      r.problem(root.get("collision_tier"), "collision_tier",
-                "must be one of auto, sphere, capsule, box, hull, mesh (got '" + *m + "')");
+    if (!shape_tier_from_name(*m))
+      r.problem(root.get("collision_tier"), "collision_tier", std::string(kShapeTierChoices) + " (got '" + *m + "')");
     s.collision_tier = *m;
   }
   const toml::table* w = root["world"].as_table();

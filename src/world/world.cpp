@@ -44,6 +44,53 @@ int Entities::add(std::string id_, int kind_, const Vec3& p, float heading, floa
   return static_cast<int>(id.size() - 1);
 }
 
+bool FixedObjects::valid() const {
+  const size_t n = id.size();
+  return kind.size() == n && state.size() == n && pos.size() == n && heading_deg.size() == n && radius_m.size() == n;
+}
+
+bool Entities::valid() const {
+  const size_t n = id.size();
+  for (size_t s : {kind.size(), state.size(), pos.size(), vel.size(), heading_deg.size(), pitch_deg.size(),
+                   roll_deg.size(), radius_m.size(), cruise_mps.size(), max_mps.size(), active.size(), local.size(),
+                   snapshots.size(), autonomous.size(), target.size(), aim.size(), owner.size(), rounds.size(),
+                   fuel_l.size(), node.size(), route.size(), leg.size(), loop_route.size(), flee_until.size(),
+                   calm_until.size()})
+    if (s != n) return false;
+  return true;
+}
+
+bool World::valid() const {
+  if (!ents.valid() || !fixed.valid()) return false;
+  const int ne = static_cast<int>(ents.size());
+  auto kind_ok = [&](int k, int state) { return k >= 0 && k < kinds.size() && state < static_cast<int>(kinds[k].states.size()); };
+  for (int e = 0; e < ne; ++e)
+    if (!kind_ok(ents.kind[e], ents.state[e]) || ents.owner[e] < -1 || ents.owner[e] >= ne || ents.target[e] < -1 ||
+        ents.target[e] >= ne)
+      return false;
+  for (size_t o = 0; o < fixed.size(); ++o)
+    if (!kind_ok(fixed.kind[o], fixed.state[o])) return false;
+  return grid.cols() == 0 || grid.valid(fixed);
+}
+
+bool GridIndex::valid(const FixedObjects& objs) const {
+  const size_t ncell = static_cast<size_t>(cols_) * rows_;
+  if (start_.size() != ncell + 1 || start_[0] != 0 || start_[ncell] != items_.size()) return false;
+  std::vector<uint32_t> listed(objs.size(), 0);
+  for (size_t c = 0; c < ncell; ++c) {
+    if (start_[c + 1] < start_[c]) return false;
+    for (uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
+      if (items_[k] >= objs.size()) return false;
+      ++listed[items_[k]];
+    }
+  }
+  for (size_t o = 0; o < objs.size(); ++o) {
+    const CellRect r = cells_of(objs.pos[o].x(), objs.pos[o].y(), home_only_ ? 0.0 : objs.radius_m[o]);
+    if (listed[o] != static_cast<uint32_t>((r.i1 - r.i0 + 1) * (r.j1 - r.j0 + 1))) return false;
+  }
+  return true;
+}
+
 int GridIndex::cell_of(double x, double y) const {
   const int i = std::clamp(static_cast<int>(std::floor(x / cell_)), 0, cols_ - 1);
   const int j = std::clamp(static_cast<int>(std::floor(y / cell_)), 0, rows_ - 1);

@@ -1,7 +1,7 @@
 // The world a node simulates: terrain, kinds and models, fixed objects with their 125 m
 // gridsquare index, and the moving entities (vehicles and munitions) as contiguous arrays.
 // Entities and fixed objects are referred to by index; nothing holds pointers across ticks.
-// The world is changed in one place, world::apply (apply.hpp), from collision outcomes.
+// The world is changed in one place, world::apply (changes.hpp), from collision outcomes.
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -24,6 +24,7 @@ struct FixedObjects {
   std::vector<float> radius_m;     // bounding radius (from the kind)
   size_t size() const { return id.size(); }
   void add(std::string id_, int kind_, const Vec3& p, float heading, float radius);
+  bool valid() const;  // invariant: every array has size() entries
 };
 
 // Gridsquare index of fixed objects (thesis p. 8-9: 125 m gridsquares, a list per gridsquare).
@@ -38,10 +39,12 @@ class GridIndex {
   int rows() const { return rows_; }
   double cell_m() const { return cell_; }
   int cell_of(double x, double y) const;  // clamped to the map
+  // Invariant: offsets ascend, every listing names an object of `objs`, each object listed in
+  // exactly the gridsquares build() gave it.
+  bool valid(const FixedObjects& objs) const;
   std::pair<const uint32_t*, const uint32_t*> objects_in(int cell) const {
     return {items_.data() + start_[cell], items_.data() + start_[cell + 1]};
   }
-  int count_in(int cell) const { return static_cast<int>(start_[cell + 1] - start_[cell]); }
 
   struct CellRect {
     int i0, j0, i1, j1;  // inclusive gridsquare columns / rows, clamped to the map
@@ -99,6 +102,7 @@ struct Entities {
   std::vector<float> calm_until;             // autonomous: no new reaction before this time (s)
   size_t size() const { return id.size(); }
   int add(std::string id_, int kind_, const Vec3& p, float heading, float radius);
+  bool valid() const;  // invariant: every array has size() entries
 };
 
 struct World {
@@ -112,9 +116,12 @@ struct World {
   double t = 0;                 // scenario time, s
   int64_t frame = 0;
 
+  // Invariants (asserted in debug builds, as Box2D validates its broad phase): array sizes
+  // match, kind, state, owner and target indices in range, the grid lists every object.
+  bool valid() const;
   bool is_water(double x, double y) const { return terrain.height(x, y) < water_level_m; }
   const Kind& kind_of_entity(size_t i) const { return kinds[ents.kind[i]]; }
-  const Kind& kind_of_fixed(size_t i) const { return kinds[fixed.kind[i]]; }
+  bool is_munition(size_t i) const { return kind_of_entity(i).mobility == Mobility::Munition; }
 };
 
 }  // namespace npsnet::world

@@ -71,7 +71,7 @@ TEST(Continuous, TanksFasterThanTheThesisLimitPassThroughWithThesisCollideWithCo
   double v = 0;
   auto w1 = make(v);
   EXPECT_GT(mps2kmh(v), thesis::kTunnellingSpeedKmh);
-  collision::Detector thesis_d;
+  collision::Detector thesis_d(collision::Options{collision::Method::Thesis});
   EXPECT_TRUE(run_ticks(w1, thesis_d, dt, 6).empty()) << "the thesis method should miss this";
   EXPECT_GT(w1.ents.pos[0].x(), w1.ents.pos[1].x()) << "...and the tanks are past each other";
 
@@ -160,7 +160,7 @@ TEST(BorderObjects, Figure9LargeObjectAtAGridsquareCornerTouchedFromTheNeighbour
     return w;
   };
   auto w1 = make();
-  collision::Detector thesis_d;
+  collision::Detector thesis_d(collision::Options{collision::Method::Thesis});
   std::vector<collision::Contact> c1;
   thesis_d.detect(w1, c1);
   EXPECT_TRUE(c1.empty());
@@ -186,7 +186,7 @@ TEST(BorderObjects, ObjectLargerThanAGridsquareIsFoundFromEveryGridsquareItCover
   test::add_vehicle(w, "diag", "m1a1", 6.5 * g + (r - 2) / std::sqrt(2.0), 6.5 * g - (r - 2) / std::sqrt(2.0), 0, 0);
   test::add_vehicle(w, "outside", "m1a1", 6.5 * g - r - 20, 6.5 * g, 0, 0);
   test::index_fixed(w, true);
-  collision::Detector thesis_d;
+  collision::Detector thesis_d(collision::Options{collision::Method::Thesis});
   std::vector<collision::Contact> c1;
   thesis_d.detect(w, c1);
   EXPECT_TRUE(c1.empty());
@@ -254,7 +254,7 @@ TEST(Method, ParsesNamesAndRejectsOthers) {
 
 TEST(Tiers, KindsDeclareTheirTiersInKindsToml) {
   auto w = test::flat_world();
-  EXPECT_EQ(w.kinds[w.kinds.find("m1a1")].top_tier, 4);
+  EXPECT_EQ(w.kinds[w.kinds.find("m1a1")].top_tier, world::ShapeTier::Mesh);
   EXPECT_EQ(collision::top_tier(w.kinds[w.kinds.find("m1a1")]), collision::Tier::Mesh);
   EXPECT_EQ(collision::top_tier(w.kinds[w.kinds.find("tree")]), collision::Tier::Sphere);
   EXPECT_EQ(collision::top_tier(w.kinds[w.kinds.find("he_round")]), collision::Tier::Sphere);

@@ -21,7 +21,7 @@ TEST(L1, RejectsPairsOutsideTheWindow) {
   test::add_vehicle(w, "b", "m1a1", 500 + thesis::kFirstLevelWindowM + 1, 500, 0, 0);
   test::add_vehicle(w, "c", "m1a1", 500, 500 + thesis::kFirstLevelWindowM + 1, 0, 0);
   test::index_fixed(w);
-  collision::Detector d;
+  collision::Detector d(collision::Options{collision::Method::Thesis});
   EXPECT_TRUE(detect_once(w, d).empty());
   EXPECT_EQ(d.stats().l1_pairs, 0);
 }
@@ -31,7 +31,7 @@ TEST(L2, RejectsWithinWindowButApart) {
   test::add_vehicle(w, "a", "m1a1", 500, 500, 0, 0);
   test::add_vehicle(w, "b", "m1a1", 550, 550, 0, 0);
   test::index_fixed(w);
-  collision::Detector d;
+  collision::Detector d(collision::Options{collision::Method::Thesis});
   EXPECT_TRUE(detect_once(w, d).empty());
   EXPECT_EQ(d.stats().l1_pairs, 1);
   EXPECT_EQ(d.stats().l2_pairs, 0);
@@ -44,7 +44,7 @@ TEST(L3, RejectsSpheresThatTouchWithoutTheSurfaces) {
   const double r = world::entity_radius(w, a);
   test::add_vehicle(w, "b", "m1a1", 500 + 1.6 * r * 0.7071, 500 + 1.6 * r * 0.7071, 0, 0);
   test::index_fixed(w);
-  collision::Detector d;
+  collision::Detector d(collision::Options{collision::Method::Thesis});
   EXPECT_TRUE(detect_once(w, d).empty());
   EXPECT_EQ(d.stats().l2_pairs, 1);
   EXPECT_EQ(d.stats().l3_rejects, 1);
@@ -55,7 +55,7 @@ TEST(L3, AcceptsWhenHullsMeet) {
   test::add_vehicle(w, "a", "m1a1", 500, 500, 90, 0);
   test::add_vehicle(w, "b", "m1a1", 500, 503.0, 90, 0);  // side by side, 3 m apart: hulls overlap
   test::index_fixed(w);
-  collision::Detector d;
+  collision::Detector d(collision::Options{collision::Method::Thesis});
   const auto c = detect_once(w, d);
   ASSERT_EQ(c.size(), 1u);
   EXPECT_STREQ(c[0].method, "L3-haines");
@@ -66,7 +66,7 @@ TEST(Episodes, OneEventPerContactEpisode) {
   test::add_vehicle(w, "a", "m1a1", 500, 500, 90, 0);
   const int b = test::add_vehicle(w, "b", "m1a1", 500, 503.0, 90, 0);
   test::index_fixed(w);
-  collision::Detector d;
+  collision::Detector d(collision::Options{collision::Method::Thesis});
   EXPECT_EQ(detect_once(w, d).size(), 1u);
   EXPECT_EQ(detect_once(w, d).size(), 0u);  // still touching: same episode
   w.ents.pos[b].y() = 600;                  // separate
@@ -80,10 +80,10 @@ TEST(Fixed, CheckedOnlyBelowThresholdHeight) {
   test::add_fixed(w, "t", "tree", 562.5, 562.5);
   test::index_fixed(w);
   const int e = test::add_vehicle(w, "a", "ah64", 560, 562.5, 90, 0);
-  collision::Detector d;
+  collision::Detector d(collision::Options{collision::Method::Thesis});
   EXPECT_EQ(detect_once(w, d).size(), 1u);
   w.ents.pos[e].z() += thesis::kFixedCheckThresholdHeightM + 1;
-  collision::Detector d2;
+  collision::Detector d2(collision::Options{collision::Method::Thesis});
   EXPECT_TRUE(detect_once(w, d2).empty());
   EXPECT_EQ(d2.stats().fixed_tests, 0);
 }
@@ -96,7 +96,7 @@ TEST(Fixed, ThesisGridMissesAcrossTheBorder) {
   test::add_fixed(w, "t", "tree", border + 1.0, 562.5);
   test::index_fixed(w, /*home_only=*/true);
   test::add_vehicle(w, "a", "m1a1", border - 3.0, 562.5, 90, 0);
-  collision::Detector d;
+  collision::Detector d(collision::Options{collision::Method::Thesis});
   EXPECT_TRUE(detect_once(w, d).empty());
 }
 
@@ -105,7 +105,7 @@ TEST(Bounce, SeparatesAndConservesMomentum) {
   const int a = test::add_vehicle(w, "a", "m1a1", 500, 500, 90, 10);
   const int b = test::add_vehicle(w, "b", "bmp", 500, 503.5, 120, 10);  // closing at 30 degrees
   test::index_fixed(w);
-  collision::Detector d;
+  collision::Detector d(collision::Options{collision::Method::Thesis});
   auto contacts = detect_once(w, d);
   ASSERT_EQ(contacts.size(), 1u);
   world::Changes ch;
@@ -125,7 +125,7 @@ TEST(Bounce, SeparatesAndConservesMomentum) {
   // separated: they no longer touch, so next tick finds nothing
   const double dist = (world::entity_centre(w, b) - world::entity_centre(w, a)).norm();
   EXPECT_GE(dist, world::entity_radius(w, a) + world::entity_radius(w, b));
-  collision::Detector d2;
+  collision::Detector d2(collision::Options{collision::Method::Thesis});
   EXPECT_TRUE(detect_once(w, d2).empty());
 }
 
