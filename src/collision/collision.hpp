@@ -95,6 +95,9 @@ class Detector {
   void detect_thesis(const world::World& w);
   void detect_continuous(const world::World& w);
   void prepare_shapes(const world::World& w);
+  // rank_[e]: entity e's place in the order of ids (fixed_rank_ for fixed objects): contacts and
+  // pairs are ordered by these integers, not by storage index nor by comparing strings.
+  void rank_ids(const world::World& w);
   // `continuing`: the pair touched last tick; its episode goes on while its bound spheres meet.
   bool moving_pair(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa, double rba,
                    const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, bool continuing, Contact& k);
@@ -117,6 +120,7 @@ class Detector {
   MovingGrid moving_;
   FixedGrid fixed_grid_;
   size_t fixed_indexed_ = static_cast<size_t>(-1);
+  std::vector<uint32_t> rank_, fixed_rank_;
   std::vector<Shape> shapes_;           // per model index
   ShapeScratch scratch_;
 };
@@ -160,7 +164,15 @@ int fixed_damage_level(double momentum, double resistance);
 // number of sequential impulse sweeps over all bouncing contacts, each impulse equal and
 // opposite (momentum conserved), then one velocity change per body. Continuous contacts
 // (dt_s > 0) move the bodies back to the time of impact and on with their new velocities.
-void respond(const world::World& w, const std::vector<Contact>& contacts, world::Changes& out);
+// Reused buffers of respond(): no allocation per call once warm.
+struct RespondScratch {
+  std::vector<const Contact*> bounces;
+  std::vector<int> body;
+  std::vector<Vec3> v, shift;
+  std::vector<double> first_toi, dt;
+};
+void respond(const world::World& w, const std::vector<Contact>& contacts, world::Changes& out, RespondScratch& s);
+void respond(const world::World& w, const std::vector<Contact>& contacts, world::Changes& out);  // own scratch
 // A munition detonates at `point`: on an entity (`hit` >= 0) it kills it and leaves the ground
 // untouched (p. 15); on the ground it makes a crater; either way objects and vehicles within the
 // blast radius are damaged, more the nearer they are. Only entities of this node (ents.local)

@@ -199,8 +199,21 @@ bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
   return moving_pair(w, a, b, c0[0], c1[0], rs[0], rb[0], c0[1], c1[1], rs[1], rb[1], false, k);
 }
 
+void Detector::rank_ids(const world::World& w) {
+  auto rank = [](const std::vector<std::string>& ids, std::vector<uint32_t>& out) {
+    std::vector<uint32_t> by(ids.size());
+    for (uint32_t i = 0; i < by.size(); ++i) by[i] = i;
+    std::sort(by.begin(), by.end(), [&](uint32_t x, uint32_t y) { return ids[x] != ids[y] ? ids[x] < ids[y] : x < y; });
+    out.resize(ids.size());
+    for (uint32_t r = 0; r < by.size(); ++r) out[by[r]] = r;
+  };
+  if (rank_.size() != w.ents.size()) rank(w.ents.id, rank_);  // entities are only ever appended
+  if (fixed_rank_.size() != w.fixed.size()) rank(w.fixed.id, fixed_rank_);
+}
+
 void Detector::detect_continuous(const world::World& w) {
   prepare_shapes(w);
+  rank_ids(w);
   const auto& ents = w.ents;
   const int n = static_cast<int>(ents.size());
   const double dt = opt_.dt_s;
@@ -284,8 +297,8 @@ void Detector::detect_continuous(const world::World& w) {
     size_t ia = i, ib = j;
     if (ents.owner[a] == b || ents.owner[b] == a) continue;  // a round never meets its shooter
     if (w.is_munition(a) && w.is_munition(b)) continue;
-    // Canonical order by id, so that the answer does not depend on where entities are stored.
-    if (ents.id[b] < ents.id[a]) std::swap(a, b), std::swap(ia, ib);
+    // Canonical order by id rank, so that the answer does not depend on where entities are stored.
+    if (rank_[b] < rank_[a]) std::swap(a, b), std::swap(ia, ib);
     Contact k;
     const bool continuing = std::binary_search(previous_.begin(), previous_.end(), contact_key(a, b, false));
     if (!moving_pair(w, a, b, c0_[ia], c1_[ia], r_sphere_[ia], r_bound_[ia], c0_[ib], c1_[ib], r_sphere_[ib],
@@ -295,14 +308,12 @@ void Detector::detect_continuous(const world::World& w) {
     candidates_.push_back(k);
   }
 
-  // Deterministic order: time of impact, then the ids (not the storage order).
+  // Deterministic order: time of impact, then the id ranks (not the storage order).
   std::sort(candidates_.begin(), candidates_.end(), [&](const Contact& x, const Contact& y) {
     if (x.toi != y.toi) return x.toi < y.toi;
-    const std::string& xa = ents.id[x.a];
-    const std::string& ya = ents.id[y.a];
-    if (xa != ya) return xa < ya;
+    if (rank_[x.a] != rank_[y.a]) return rank_[x.a] < rank_[y.a];
     if (x.b_fixed != y.b_fixed) return x.b_fixed < y.b_fixed;
-    return (x.b_fixed ? w.fixed.id[x.b] : ents.id[x.b]) < (y.b_fixed ? w.fixed.id[y.b] : ents.id[y.b]);
+    return x.b_fixed ? fixed_rank_[x.b] < fixed_rank_[y.b] : rank_[x.b] < rank_[y.b];
   });
 }
 

@@ -157,16 +157,24 @@ bool vehicle_vs_vehicle_band(const world::World& w, const Contact& c, world::Cha
 // order (deterministic, independent of where the entities are stored). Then one change per body:
 // the final velocity, and the move back to the time of impact and on (continuous), or the
 // separation push in inverse proportion to mass (thesis).
-void solve_bounces(const world::World& w, const std::vector<const Contact*>& bounces, world::Changes& out) {
+void solve_bounces(const world::World& w, const std::vector<const Contact*>& bounces, world::Changes& out,
+                   RespondScratch& s) {
   if (bounces.empty()) return;
   const auto& ents = w.ents;
-  std::vector<int> body;
+  std::vector<int>& body = s.body;
+  body.clear();
   for (const Contact* c : bounces) body.push_back(c->a), body.push_back(c->b);
   std::sort(body.begin(), body.end());
   body.erase(std::unique(body.begin(), body.end()), body.end());
   auto slot = [&](int e) { return static_cast<size_t>(std::lower_bound(body.begin(), body.end(), e) - body.begin()); };
-  std::vector<Vec3> v(body.size()), shift(body.size(), Vec3::Zero());
-  std::vector<double> first_toi(body.size(), 2.0), dt(body.size(), 0.0);
+  std::vector<Vec3>& v = s.v;
+  std::vector<Vec3>& shift = s.shift;
+  std::vector<double>& first_toi = s.first_toi;
+  std::vector<double>& dt = s.dt;
+  v.resize(body.size());
+  shift.assign(body.size(), Vec3::Zero());
+  first_toi.assign(body.size(), 2.0);
+  dt.assign(body.size(), 0.0);
   for (size_t i = 0; i < body.size(); ++i) v[i] = ents.vel[body[i]];
   for (int sweep = 0; sweep < kImpulseSweeps; ++sweep) {
     for (const Contact* c : bounces) {
@@ -219,15 +227,21 @@ double bounce_impulse(const Vec3& va, const Vec3& vb, double ma, double mb, cons
 }
 
 void respond(const world::World& w, const std::vector<Contact>& contacts, world::Changes& out) {
+  RespondScratch s;
+  respond(w, contacts, out, s);
+}
+
+void respond(const world::World& w, const std::vector<Contact>& contacts, world::Changes& out, RespondScratch& s) {
   // Bounces first (solved together), so that a stop or kill of the same body this tick wins.
-  std::vector<const Contact*> bounces;
+  std::vector<const Contact*>& bounces = s.bounces;
+  bounces.clear();
   for (const Contact& c : contacts) {
     const bool mun_a = w.kinds[w.ents.kind[c.a]].mobility == Mobility::Munition;
     const bool mun_b = !c.b_fixed && w.kinds[w.ents.kind[c.b]].mobility == Mobility::Munition;
     if (mun_a || mun_b || c.b_fixed) continue;
     if (!in_kill_band(impact_angle_deg(w.ents.heading_deg[c.a], w.ents.heading_deg[c.b]))) bounces.push_back(&c);
   }
-  solve_bounces(w, bounces, out);
+  solve_bounces(w, bounces, out, s);
   for (const Contact& c : contacts) {
     const bool mun_a = w.kinds[w.ents.kind[c.a]].mobility == Mobility::Munition;
     const bool mun_b = !c.b_fixed && w.kinds[w.ents.kind[c.b]].mobility == Mobility::Munition;
@@ -284,8 +298,8 @@ void detonate(const world::World& w, const world::DetonationRecord& d, world::Ch
   if (d.decides_fixed) w.grid.for_each_near(w.fixed, point.x(), point.y(), R, [&](int o) {
     const int lv = levels((w.fixed.pos[o] - point).norm());
     const world::Kind& k = w.kinds[w.fixed.kind[o]];
-    if (lv == 0 || k.resistance > 100) return;  // out of reach, or a rock
     const int ls = last_state(k);
+    if (lv == 0 || w.fixed.state[o] >= ls) return;  // out of reach, or nothing left to damage (a rock)
     out.fixed.push_back({o, lv == 3 ? ls : std::min(ls, w.fixed.state[o] + lv)});
   });
   for (int e = 0; e < static_cast<int>(ents.size()); ++e) {

@@ -2,7 +2,8 @@
 // Ground vehicles steer to their waypoints at cruise speed (never above their limit: Table 2 or
 // the scenario's override) and follow the terrain (height, pitch and roll from the terrain under
 // their footprint); ships stay on water; aircraft hold altitude. he_round flies a ballistic arc
-// and meets the terrain by marching along the heightfield; missile is guided to its target.
+// and meets the terrain by marching along the heightfield; a guided kind (missile) flies at its
+// target entity.
 // Only local, active entities are moved; remote ones come from the network.
 #pragma once
 #include <vector>

@@ -116,7 +116,7 @@ void step_munition(world::World& w, int e, double dt, std::vector<GroundImpact>&
   const world::Kind& k = w.kinds[ents.kind[e]];
   const Vec3 start = ents.pos[e];
   Vec3 vel = ents.vel[e];
-  if (k.name == "missile" && ents.target[e] >= 0 && ents.active[ents.target[e]]) {
+  if (k.guided && ents.target[e] >= 0 && ents.active[ents.target[e]]) {
     // Guided: pure pursuit of the target's sphere centre; within this step's reach it meets it.
     const Vec3 aim = world::entity_centre(w, ents.target[e]);
     const Vec3 to = aim - start;
@@ -129,7 +129,7 @@ void step_munition(world::World& w, int e, double dt, std::vector<GroundImpact>&
     }
   }
   // Ballistic: exact for constant gravity at any dt (x += v dt - g dt^2 / 2, v -= g dt).
-  const bool ballistic = !(k.name == "missile" && ents.target[e] >= 0);
+  const bool ballistic = !(k.guided && ents.target[e] >= 0);
   const Vec3 end = ballistic ? Vec3(start + vel * dt - Vec3(0, 0, 0.5 * kGravity * dt * dt)) : Vec3(start + vel * dt);
   if (ballistic) vel.z() -= kGravity * dt;
   ents.vel[e] = vel;
@@ -187,7 +187,7 @@ int fire(world::World& w, int shooter, int munition_kind, const Vec3 target_poin
   const double v0 = kmh2mps(mk.max_speed_kmh);
   const double horiz = to.head<2>().norm();
   Vec3 vel;
-  if (mk.name == "missile") {
+  if (mk.guided) {
     vel = to.normalized() * v0;
   } else {
     // Lowest ballistic arc: tan(theta) = (v^2 - sqrt(v^4 - g(g x^2 + 2 y v^2))) / (g x).

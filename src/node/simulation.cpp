@@ -161,7 +161,7 @@ void Simulation::tick() {
   if (decides)
     contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(), [&](const collision::Contact& c) { return !decides(c); }),
                     contacts_.end());
-  collision::respond(w_, contacts_, changes_);
+  collision::respond(w_, contacts_, changes_, respond_scratch_);
   append(changes_, injected_);
   injected_.clear();
   for (const auto& d : injected_detonations_) collision::detonate(w_, d, changes_);

@@ -69,6 +69,7 @@ class Simulation {
   std::vector<Scheduled> schedule_;
   size_t next_fire_ = 0;
   collision::Detector detector_;
+  collision::RespondScratch respond_scratch_;
   std::vector<collision::Contact> contacts_;
   std::vector<dynamics::GroundImpact> impacts_;
   std::vector<int> fired_;

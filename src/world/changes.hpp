@@ -43,7 +43,7 @@ struct CollisionRecord {
   bool b_fixed = false;
   Vec3 point{0, 0, 0};
   double closing_speed_mps = 0, angle_deg = 0;
-  std::string method;
+  const char* method = "";    // a string literal (no allocation per record)
   Result result_a = Result::None, result_b = Result::None;
 };
 
@@ -56,7 +56,7 @@ struct DetonationRecord {
   std::string round;          // the round's name in events
   int target = -1;            // entity hit, or -1 for the ground
   Vec3 point{0, 0, 0};
-  std::string result;         // "entity_impact", "ground_impact"
+  const char* result = "";    // "entity_impact", "ground_impact"
   bool decides_fixed = true;  // this node decides the blast damage of fixed objects (its round)
 };
 

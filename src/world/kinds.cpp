@@ -65,7 +65,7 @@ KindTable KindTable::load(const std::filesystem::path& file, ModelLibrary& model
     const std::string p = name + ".";
     r.unknown_keys(*t, p, {"mobility", "mass_kg", "radius_m", "states", "models", "explosive", "max_speed_kmh",
                            "dis_type", "blast_radius_m", "crater_radius_m", "crater_depth_m", "rounds", "fuel_l", "resistance",
-                           "tiers", "sensor_range_m"});
+                           "tiers", "sensor_range_m", "guided"});
     Kind k;
     k.name = name;
     if (auto m = r.string(*t, "mobility", p + "mobility", true, tl)) {
@@ -118,6 +118,8 @@ KindTable KindTable::load(const std::filesystem::path& file, ModelLibrary& model
       const auto& v = *d;
       k.dis = {uint8_t(v[0]), uint8_t(v[1]), uint16_t(v[2]), uint8_t(v[3]), uint8_t(v[4]), uint8_t(v[5]), uint8_t(v[6])};
     }
+    k.guided = r.boolean(*t, "guided", p + "guided").value_or(false);
+    if (k.guided && k.mobility != Mobility::Munition) r.problem(t->get("guided"), p + "guided", "only a munition is guided");
     k.blast_radius_m = r.number(*t, "blast_radius_m", p + "blast_radius_m", false, tl).value_or(0);
     k.crater_radius_m = r.number(*t, "crater_radius_m", p + "crater_radius_m", false, tl).value_or(0);
     k.crater_depth_m = r.number(*t, "crater_depth_m", p + "crater_depth_m", false, tl).value_or(0);

@@ -35,6 +35,7 @@ struct Kind {
   double max_speed_kmh = 0;      // Table 2 limit for vehicles, muzzle/cruise speed for munitions
   DisType dis;
   // munitions only
+  bool guided = false;           // tracks its target entity (missile); else a ballistic arc
   double blast_radius_m = 0;     // objects within are damaged, graded by distance
   double crater_radius_m = 0;
   double crater_depth_m = 0;

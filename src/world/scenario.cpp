@@ -97,7 +97,7 @@ Scenario load_scenario(const std::filesystem::path& file) {
       }
       const int tl = r.line(t);
       r.unknown_keys(*t, p, {"id", "kind", "position_m", "heading_deg", "speed_kmh", "max_speed_kmh", "waypoints_m",
-                             "node", "autonomous", "snapshots"});
+                             "node", "autonomous", "snapshots", "loop"});
       VehicleSpec v;
       v.line = tl;
       if (auto id = r.string(*t, "id", p + "id", true, tl)) {
@@ -139,6 +139,7 @@ Scenario load_scenario(const std::filesystem::path& file) {
       }
       v.autonomous = r.boolean(*t, "autonomous", p + "autonomous").value_or(false);
       v.snapshots = r.boolean(*t, "snapshots", p + "snapshots").value_or(true);
+      v.loop = r.boolean(*t, "loop", p + "loop").value_or(false);
       s.vehicles.push_back(std::move(v));
     }
   }
@@ -320,7 +321,7 @@ World build_world(const Scenario& s) {
     w.ents.fuel_l[e] = static_cast<float>(kind.fuel_l);
     w.ents.node[e] = v.node;
     w.ents.route[e] = v.waypoints;
-    w.ents.loop_route[e] = v.id.rfind("bg", 0) == 0 && !v.snapshots;
+    w.ents.loop_route[e] = v.loop;
   };
   for (size_t i = 0; i < s.vehicles.size(); ++i) {
     const auto& v = s.vehicles[i];
@@ -375,6 +376,7 @@ World build_world(const Scenario& s) {
       v.heading_deg = v.waypoints.empty() ? 0 : dir_to_heading(v.waypoints[0] - q);
       v.speed_kmh = rng.uniform(15, 55);
       v.snapshots = false;
+      v.loop = true;
       place(v, k, "background.", sf, 0);
     }
   }

@@ -25,6 +25,7 @@ struct VehicleSpec {
   std::vector<Vec2> waypoints;
   int node = 1;
   bool autonomous = false, snapshots = true;
+  bool loop = false;  // drives its waypoints over and over (background traffic)
   int line = 0;
 };
 
