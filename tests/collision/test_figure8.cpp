@@ -50,14 +50,15 @@ TEST(FixedDamage, MomentumAgainstConstants) {
 namespace {
 
 // Two vehicles whose centres are placed to touch; returns the response to a forced contact.
+// a (entity 0) moves +x at `speed`, b (entity 1) -x at `speed`: closing at 2 x speed along the
+// contact normal (+x), whatever the headings say.
 world::Changes mobile_pair(double heading_a, double heading_b, double speed, const char* ka = "m1a1",
                            const char* kb = "m1a1") {
   auto w = test::flat_world();
   const int a = test::add_vehicle(w, "a", ka, 1000, 1000, heading_a, speed);
   const int b = test::add_vehicle(w, "b", kb, 1006, 1000, heading_b, speed);
-  // velocities that close along the a->b line regardless of the headings
   w.ents.vel[a] = Vec3(speed, 0, 0);
-  w.ents.vel[b] = Vec3(-speed, 0, 0) * 0.0;
+  w.ents.vel[b] = Vec3(-speed, 0, 0);
   collision::Contact c;
   c.a = a, c.b = b, c.point = Vec3(1003, 1000, 101), c.normal = Vec3(1, 0, 0), c.method = "test";
   world::Changes out;
@@ -74,6 +75,7 @@ world::Changes fixed_hit(const char* vehicle, double speed, const char* fixed_ki
   c.a = a, c.b = o, c.b_fixed = true, c.point = Vec3(1003, 1000, 101), c.normal = Vec3(1, 0, 0), c.method = "test";
   world::Changes out;
   collision::respond(w, {c}, out);
+  EXPECT_LE(out.fixed.size(), 1u);
   fixed_state_to = out.fixed.empty() ? 0 : out.fixed[0].to_state;
   return out;
 }
@@ -83,6 +85,8 @@ world::Changes fixed_hit(const char* vehicle, double speed, const char* fixed_ki
 TEST(Figure8Mobile, InBandFastKillsBoth) {
   const auto out = mobile_pair(90, 0, 10.0);  // angle 270
   ASSERT_EQ(out.collisions.size(), 1u);
+  ASSERT_EQ(out.entities.size(), 2u);
+  EXPECT_DOUBLE_EQ(out.collisions[0].closing_speed_mps, 20.0);
   EXPECT_EQ(out.collisions[0].result_a, Result::Kill);
   EXPECT_EQ(out.collisions[0].result_b, Result::Kill);
   EXPECT_EQ(out.entities[0].to_state, 2);
@@ -90,28 +94,49 @@ TEST(Figure8Mobile, InBandFastKillsBoth) {
 }
 
 TEST(Figure8Mobile, InBandSlowStopsBoth) {
-  const auto out = mobile_pair(90, 270, thesis::kKillClosingSpeedMps * 0.5);  // head-on, 180
+  const auto out = mobile_pair(90, 270, thesis::kKillClosingSpeedMps * 0.25);  // head-on, 180; closing at half
+  ASSERT_EQ(out.collisions.size(), 1u);
+  ASSERT_EQ(out.entities.size(), 2u);
   EXPECT_EQ(out.collisions[0].result_a, Result::Stop);
   EXPECT_EQ(out.collisions[0].result_b, Result::Stop);
-  EXPECT_EQ(out.entities[0].to_state, -1);
-  EXPECT_TRUE(out.entities[0].vel.isZero());
+  for (const auto& ch : out.entities) {
+    EXPECT_EQ(ch.to_state, -1);
+    EXPECT_TRUE(ch.set_vel);
+    EXPECT_TRUE(ch.vel.isZero());
+  }
 }
 
 TEST(Figure8Mobile, SameDirectionBandIsStopOrKill) {
-  EXPECT_EQ(mobile_pair(90, 94.9, 10).collisions[0].result_a, Result::Kill);   // angle 4.9
-  EXPECT_EQ(mobile_pair(90, 95.1, 10).collisions[0].result_a, Result::Bounce); // angle 5.1
+  const auto in = mobile_pair(90, 94.9, 10), out = mobile_pair(90, 95.1, 10);  // angles 4.9, 5.1
+  ASSERT_EQ(in.collisions.size(), 1u);
+  ASSERT_EQ(out.collisions.size(), 1u);
+  EXPECT_EQ(in.collisions[0].result_a, Result::Kill);
+  EXPECT_EQ(out.collisions[0].result_a, Result::Bounce);
 }
 
 TEST(Figure8Mobile, OutsideBandsBounceAndDiminish) {
   const auto out = mobile_pair(90, 60, 10.0);  // angle 330
+  ASSERT_EQ(out.collisions.size(), 1u);
   EXPECT_EQ(out.collisions[0].result_a, Result::Bounce);
   EXPECT_EQ(out.collisions[0].result_b, Result::Bounce);
-  EXPECT_LT(out.entities[0].vel.norm(), 10.0);
+  ASSERT_EQ(out.entities.size(), 2u);
+  const world::EntityChange& a = out.entities[0].entity == 0 ? out.entities[0] : out.entities[1];
+  const world::EntityChange& b = out.entities[0].entity == 0 ? out.entities[1] : out.entities[0];
+  ASSERT_TRUE(a.set_vel && b.set_vel);
+  // A bounce, not a stop: each turns back along the normal, slower than it came (Figure 7),
+  // separating at the restitution times the closing speed; equal masses keep zero momentum.
+  EXPECT_LT(a.vel.x(), 0.0);
+  EXPECT_GT(b.vel.x(), 0.0);
+  EXPECT_LT(a.vel.norm(), 10.0);
+  EXPECT_LT(b.vel.norm(), 10.0);
+  EXPECT_NEAR((b.vel - a.vel).x(), thesis::kBounceRestitution * 20.0, 1e-9);
+  EXPECT_NEAR((a.vel + b.vel).norm(), 0.0, 1e-9);
 }
 
 TEST(Figure8Fixed, SlowTankDamagesTreeAndIsSlowed) {
   int to = -1;
   const auto out = fixed_hit("m1a1", kmh2mps(5), "tree", to);  // 8.75e4 kg m/s: low
+  ASSERT_EQ(out.collisions.size(), 1u);
   EXPECT_EQ(to, 1);
   EXPECT_EQ(out.collisions[0].result_b, Result::DamageFixed);
   EXPECT_EQ(out.collisions[0].result_a, Result::Slowed);
@@ -120,6 +145,7 @@ TEST(Figure8Fixed, SlowTankDamagesTreeAndIsSlowed) {
 TEST(Figure8Fixed, FastTankLeavesAStump) {
   int to = -1;
   const auto out = fixed_hit("m1a1", kmh2mps(50), "tree", to);  // 8.75e5: high
+  ASSERT_EQ(out.collisions.size(), 1u);
   EXPECT_EQ(to, 2);
   EXPECT_EQ(out.collisions[0].result_b, Result::DestroyFixed);
   EXPECT_EQ(out.collisions[0].result_a, Result::Slowed);
@@ -128,6 +154,7 @@ TEST(Figure8Fixed, FastTankLeavesAStump) {
 TEST(Figure8Fixed, JeepOverBushNoDamage) {
   int to = -1;
   const auto out = fixed_hit("hmmwv", kmh2mps(40), "bush", to);
+  ASSERT_EQ(out.collisions.size(), 1u);
   EXPECT_TRUE(out.fixed.empty());
   EXPECT_EQ(out.collisions[0].result_a, Result::None);
   EXPECT_EQ(out.collisions[0].result_b, Result::None);
@@ -136,6 +163,7 @@ TEST(Figure8Fixed, JeepOverBushNoDamage) {
 TEST(Figure8Fixed, LargeObjectFastKillsVehicle) {
   int to = -1;
   const auto out = fixed_hit("m1a1", kmh2mps(60), "watertower", to);
+  ASSERT_EQ(out.collisions.size(), 1u);
   EXPECT_EQ(out.collisions[0].result_a, Result::Kill);
   EXPECT_EQ(out.collisions[0].result_b, Result::DestroyFixed);
   EXPECT_EQ(to, 2);
@@ -144,6 +172,7 @@ TEST(Figure8Fixed, LargeObjectFastKillsVehicle) {
 TEST(Figure8Fixed, LargeObjectSlowStopsVehicleAndDamagesObject) {
   int to = -1;
   const auto out = fixed_hit("m1a1", kmh2mps(5), "watertower", to);
+  ASSERT_EQ(out.collisions.size(), 1u);
   EXPECT_EQ(out.collisions[0].result_a, Result::Stop);
   EXPECT_EQ(out.collisions[0].result_b, Result::DamageFixed);
   EXPECT_EQ(to, 1);
@@ -152,6 +181,7 @@ TEST(Figure8Fixed, LargeObjectSlowStopsVehicleAndDamagesObject) {
 TEST(Figure8Fixed, TankIntoBuildingDamagesBoth) {
   int to = -1;
   const auto out = fixed_hit("m1a1", kmh2mps(25), "building", to);
+  ASSERT_EQ(out.collisions.size(), 1u);
   EXPECT_EQ(to, 2);  // damaged_med
   EXPECT_EQ(out.collisions[0].result_a, Result::Stop);
   ASSERT_FALSE(out.entities.empty());
@@ -167,6 +197,7 @@ TEST(Figure8Munition, OnlyResponseIsExplosion) {
   c.a = t, c.b = m, c.point = Vec3(998, 1000, 101), c.normal = Vec3(-1, 0, 0), c.method = "test";
   world::Changes out;
   collision::respond(w, {c}, out);
+  ASSERT_EQ(out.collisions.size(), 1u);
   EXPECT_EQ(out.collisions[0].result_a, Result::Kill);
   EXPECT_EQ(out.collisions[0].result_b, Result::Explode);
   ASSERT_EQ(out.detonations.size(), 1u);

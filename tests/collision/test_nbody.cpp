@@ -39,6 +39,7 @@ struct Outcome {
   size_t contacts = 0;
   std::map<std::string, Vec3> vel;  // by id
   std::map<std::string, Vec3> shift;
+  std::map<std::string, Vec3> pos;  // at the end of the tick
   Vec3 momentum_before{0, 0, 0}, momentum_after{0, 0, 0};
 };
 
@@ -61,6 +62,7 @@ Outcome run(const std::vector<Body>& bodies, const std::vector<int>& perm, doubl
   for (size_t e = 0; e < w.ents.size(); ++e) {
     o.momentum_before += m * w.ents.vel[e];
     o.vel[w.ents.id[e]] = w.ents.vel[e];
+    o.pos[w.ents.id[e]] = w.ents.pos[e];
   }
   for (const auto& x : ch.entities) {
     EXPECT_TRUE(x.set_vel);
@@ -84,7 +86,14 @@ void check(int n, double rho0, double rho1, double dt, size_t expected_contacts)
   EXPECT_EQ(ref.contacts, expected_contacts);
   // Momentum: equal and opposite impulses; the bodies start with zero total momentum.
   EXPECT_NEAR((ref.momentum_after - ref.momentum_before).norm(), 0.0, 1e-6 * ref.momentum_before.norm() + 1e-6);
-  for (const auto& [id, v] : ref.vel) EXPECT_LT(v.norm(), speed) << id << ": bounce diminishes speed";
+  // Every body bounces back out of the ring (Figure 7: off each other, slower): a response
+  // that stopped them all would keep zero momentum too, but none would move outward.
+  ASSERT_EQ(ref.vel.size(), static_cast<size_t>(n));
+  for (const auto& [id, v] : ref.vel) {
+    EXPECT_LT(v.norm(), speed) << id << ": bounce diminishes speed";
+    const Vec2 out = (ref.pos.at(id) - Vec3(1000, 1000, 0)).head<2>().normalized();
+    EXPECT_GT(v.head<2>().dot(out), 0.05 * speed) << id << ": moves back out of the ring";
+  }
   std::mt19937 rng(7);
   for (int trial = 0; trial < 10; ++trial) {
     std::shuffle(perm.begin(), perm.end(), rng);

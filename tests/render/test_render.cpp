@@ -7,6 +7,7 @@
 #include <stb/stb_image.h>
 
 #include <cstdlib>
+#include <functional>
 #include <fstream>
 #include <string>
 
@@ -25,12 +26,16 @@ namespace {
 
 const fs::path kSrc = NPSNET_SOURCE_DIR;
 
-// Flat ground at 50 m, 129 x 129 posts 2 m apart (256 m square), the bundled kinds and models.
-world::World flat_world(float height = 50.0f) {
+// Flat ground at 50 m, 129 x 129 posts 2 m apart (256 m square), the bundled kinds and models;
+// post(i, j), when given, sets each post's height instead (the terrain is built from them).
+world::World flat_world(float height = 50.0f, const std::function<float(int, int)>& post = {}) {
   world::World w;
   const int n = 129;
-  w.terrain = world::Terrain(n, n, 2.0, std::vector<float>(static_cast<size_t>(n * n), height),
-                             geo::Geodetic{35.98, -121.25, 0.0});
+  std::vector<float> h(static_cast<size_t>(n * n), height);
+  if (post)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) h[static_cast<size_t>(j * n + i)] = post(i, j);
+  w.terrain = world::Terrain(n, n, 2.0, std::move(h), geo::Geodetic{35.98, -121.25, 0.0});
   w.kinds = world::KindTable::load(kSrc / "models/kinds.toml", w.models);
   return w;
 }
@@ -365,10 +370,8 @@ TEST(Render, GlslLogLineAndFont) {
 }
 
 TEST(Render, WaterDrawnAtItsLevel) {
-  world::World w = flat_world(50.0f);
   // a pond: posts in the middle 40 x 40 are 5 m below the ground and 3 m below the water level
-  for (int j = 44; j < 84; ++j)
-    for (int i = 44; i < 84; ++i) const_cast<float&>(w.terrain.posts()[static_cast<size_t>(j * 129 + i)]) = 45.0f;
+  world::World w = flat_world(50.0f, [](int i, int j) { return i >= 44 && i < 84 && j >= 44 && j < 84 ? 45.0f : 50.0f; });
   w.water_level_m = 48.0;
   auto o = options(120, 90);
   render::Renderer r(o, w);
