@@ -159,11 +159,11 @@ int main(int argc, char** argv) {
     {
       auto pose_at = [&](int e, double t) { return Vec3(w.ents.pos[e] - w.ents.vel[e] * dt * (1 - t)); };
       const Vec3 ca0 = ca1 - w.ents.vel[A] * dt;
-      const collision::SweepHit hb = collision::sphere_sweep(ca0, ca1, sa0.bound_radius, cb0, cb1, sb0.bound_radius);
+      const collision::Trace hb = collision::sphere_sweep(ca0, ca1, sa0.bound_radius, cb0, cb1, sb0.bound_radius);
       if (hb.hit) {
         fcl::CollisionObjectd oa(meshes[w.kinds[ka].models[0]]), ob(meshes[w.kinds[kb].models[0]]);
         const double per_t = speed * dt;  // metres of relative travel per unit of t
-        double t = hb.t;
+        double t = hb.fraction;
         bool near = false;  // within 1 mm: go on to 1 um to tell a touch from a graze
         for (int it = 0; it < 600; ++it) {
           oa.setTransform(tf(ra, pose_at(A, t)));
@@ -183,7 +183,7 @@ int main(int argc, char** argv) {
           }
           if (per_t <= 0) break;
           t += (res.min_distance - 0.5 * kTouch) / per_t;
-          if (t > std::min(1.0, hb.t_exit)) break;
+          if (t > std::min(1.0, hb.exit_fraction)) break;
           if (it == 599) tr.converged = false;
         }
         tr.graze = near && !tr.hit;
@@ -216,7 +216,7 @@ int main(int argc, char** argv) {
         }
         else if (!tr.started_inside) {
           s.point_err.push_back((k.point - tr.point).norm());
-          s.time_err.push_back(std::abs(k.toi - tr.t) * speed * dt);
+          s.time_err.push_back(std::abs(k.fraction - tr.t) * speed * dt);
         }
       } else {
         ++s.truth_non;

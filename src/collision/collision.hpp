@@ -32,19 +32,20 @@
 #include "collision/broadphase.hpp"
 #include "collision/shapes.hpp"
 #include "collision/sweep.hpp"
+#include "collision/trace.hpp"
 #include "core/constants.hpp"
 #include "world/changes.hpp"
 #include "world/world.hpp"
 
 namespace npsnet::collision {
 
-struct Contact {
+// A contact is the trace of a pair over the tick: fraction = time of impact in [0, 1] of the
+// dt_s the sweep spanned (thesis: 1, found at the end of the tick, dt_s = 0), point (local
+// frame), normal (unit, from a towards b), started_inside (touching at the start of the tick).
+struct Contact : Trace {
   int a = -1, b = -1;     // entity indices; b is a fixed-object index when b_fixed
   bool b_fixed = false;
-  Vec3 point{0, 0, 0};    // contact point (local frame)
-  Vec3 normal{0, 0, 1};   // unit, from a towards b
-  double toi = 1;         // time of impact, fraction of the tick in [0, 1] (thesis: always 1)
-  double dt_s = 0;        // the tick toi refers to (s); 0 = thesis (found at the end of the tick)
+  double dt_s = 0;        // the tick the fraction refers to (s); 0 = thesis
   const char* method = "";
 };
 // The key of a contact episode (moving pairs unordered; fixed contacts flagged).
@@ -131,19 +132,13 @@ class Detector {
 // V' = 0 count as positive, which puts points on edges and vertices consistently on one side.
 bool haines_inside(const float* u, const float* v, int n);
 
-// One answer type for rays against models (and later sweeps): fraction along the ray, point,
-// face normal, which face, and whether the ray started inside.
-struct RayHit {
-  bool hit = false;
-  double t = 0;           // distance along the unit direction (may be negative: behind origin)
-  Vec3 point{0, 0, 0};
-  Vec3 normal{0, 0, 1};
-  int face = -1;
-};
 // Every face of `m` whose plane the line origin + t*dir (dir unit, model space) crosses inside
-// the polygon (Haines on the dominant-axis projection) with t in [tmin, tmax]; the one with the
-// smallest t. Degenerate faces (zero normal) and faces parallel to the ray are skipped.
-RayHit ray_model(const world::Model& m, const Vec3& origin, const Vec3& dir, double tmin, double tmax);
+// the polygon (Haines on the dominant-axis projection) with t in [tmin, tmax] (tmin < tmax; t
+// may be negative: behind the origin); the one with the smallest t, as a Trace with fraction
+// (t - tmin) / (tmax - tmin), point and face normal in model space, the face, and
+// started_inside when that face is crossed from inside (its normal along dir). Degenerate faces
+// (zero normal) and faces parallel to the ray are skipped.
+Trace ray_model(const world::Model& m, const Vec3& origin, const Vec3& dir, double tmin, double tmax);
 
 // Thesis L3 for the pair (a sphere of this object, b the other object's model at its pose):
 // the first ray from ca toward cb gives P on a's sphere; the second from P toward cb finds b's

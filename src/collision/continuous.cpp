@@ -28,14 +28,6 @@ const char* method_of(Tier t, bool fixed) {
   }
 }
 
-// The shape sweep is tested over intervals of relative motion of about the thinner body's
-// smallest half extent (each interval exactly, by swept GJK: a thin part cannot slip between
-// two samples), at most kMaxSamples a pair; the first interval that touches is halved
-// kBisections times (the time of impact to 2^-20 of the interval).
-constexpr double kSampleFraction = 1.0;
-constexpr int kMaxSamples = 64;
-constexpr int kBisections = 20;
-
 }  // namespace
 
 void Detector::prepare_shapes(const world::World& w) {
@@ -70,45 +62,11 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
     pa.rot = ra, pa.pos = pa_end - va * (1 - t);
     pb.rot = rb, pb.pos = pb_end - vb * (1 - t);
   };
-  // Do the shapes touch at some time in [t0, t1]? b sweeps relative to a; the cheapest tier
-  // that decides: a box apart decides "no", the pair's tier decides "yes" (each sweep exact).
-  auto touching = [&](double t0, double t1) {
-    Pose pa, pb;
-    poses(t0, pa, pb);
-    const Vec3 d = (vb - va) * (t1 - t0);
-    if (!box_overlap_swept(sa, pa, sb, pb, d)) {
-      ++stats_.tier_decided[static_cast<int>(Tier::Box)];
-      return false;
-    }
-    if (tier == Tier::Box) return ++stats_.tier_decided[static_cast<int>(Tier::Box)], true;
-    const bool hull = hull_overlap_swept(sa, pa, sb, pb, d);
-    if (!hull || tier == Tier::Hull) return ++stats_.tier_decided[static_cast<int>(Tier::Hull)], hull;
-    ++stats_.tier_decided[static_cast<int>(Tier::Mesh)];
-    return mesh_overlap_swept(sa, pa, sb, pb, d, scratch_);
-  };
   const double rel = (va - vb).norm();
-  const double step = kSampleFraction * std::max(1e-3, std::min(sa.min_half, sb.min_half));
-  int n = rel > 0 ? static_cast<int>(std::ceil(rel * (t_out - t_in) / step)) : 1;
-  n = std::clamp(n, 1, kMaxSamples);
-  // The whole interval first: most pairs whose bounds meet never touch, and one exact swept
-  // test per tier says so.
-  if (!touching(t_in, t_out)) return false;
-  double lo = t_in, hi = -1;
-  if (touching(t_in, t_in)) hi = t_in;  // touching already where the bounds first meet
-  for (int s = 1; s <= n && hi < 0; ++s) {
-    const double t = t_in + (t_out - t_in) * s / n;
-    if (touching(lo, t)) {
-      hi = t;
-      break;
-    }
-    lo = t;
-  }
-  if (hi < 0) return false;
-  // No touch in [t_in, lo); a touch in [lo, hi]: halve down to the first.
-  for (int i = 0; i < kBisections && hi > lo; ++i) {
-    const double m = 0.5 * (lo + hi);
-    (touching(lo, m) ? hi : lo) = m;
-  }
+  const Trace toi = cast_shapes(sa, Pose{ra, pa_end}, va, sb, Pose{rb, pb_end}, vb, tier, t_in, t_out, scratch_,
+                                stats_.tier_decided);
+  if (!toi.hit) return false;
+  const double hi = toi.fraction;
   Pose pa, pb;
   poses(hi, pa, pb);
   const Vec3 ca = pa.rot * sa.sphere_centre + pa.pos, cb = pb.rot * sb.sphere_centre + pb.pos;
@@ -129,16 +87,18 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
   } else {
     // Box or hull contact without the surfaces meeting: the ray from each centre to the other
     // (thesis L3's first ray, Haines on the polygon), midway between the two surface points.
-    const RayHit hb = ray_model(w.models[w.kinds[b_fixed ? w.fixed.kind[b] : ents.kind[b]]
+    const Trace hb = ray_model(w.models[w.kinds[b_fixed ? w.fixed.kind[b] : ents.kind[b]]
                                              .models[b_fixed ? w.fixed.state[b] : ents.state[b]]],
                                 pb.rot.transpose() * (ca - pb.pos), pb.rot.transpose() * k.normal, 0, d.norm());
-    const RayHit ha = ray_model(w.models[w.kinds[ents.kind[a]].models[ents.state[a]]],
+    const Trace ha = ray_model(w.models[w.kinds[ents.kind[a]].models[ents.state[a]]],
                                 pa.rot.transpose() * (cb - pa.pos), -(pa.rot.transpose() * k.normal), 0, d.norm());
     const Vec3 qa = ha.hit ? Vec3(pa.rot * ha.point + pa.pos) : ca;
     const Vec3 qb = hb.hit ? Vec3(pb.rot * hb.point + pb.pos) : cb;
     k.point = 0.5 * (qa + qb);
   }
-  k.toi = hi;
+  k.hit = true;
+  k.fraction = hi;
+  k.started_inside = toi.started_inside;
   k.method = method_of(tier, b_fixed);
   return true;
 }
@@ -153,7 +113,7 @@ bool Detector::moving_pair(const world::World& w, int a, int b, const Vec3& c0a,
                                                   : std::min(top_tier(w.kinds[ents.kind[a]]), top_tier(w.kinds[ents.kind[b]]));
   const bool sphere = tier == Tier::Sphere;
   ++stats_.sweep_pairs;
-  const SweepHit h = sphere_sweep(c0a, c1a, sphere ? rsa : rba, c0b, c1b, sphere ? rsb : rbb);
+  const Trace h = sphere_sweep(c0a, c1a, sphere ? rsa : rba, c0b, c1b, sphere ? rsb : rbb);
   if (!h.hit) {
     ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];
     return false;
@@ -162,11 +122,12 @@ bool Detector::moving_pair(const world::World& w, int a, int b, const Vec3& c0a,
   k.a = a, k.b = b, k.b_fixed = false, k.dt_s = opt_.dt_s;
   if (sphere || continuing) {  // a continuing episode needs no more than its bound
     ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];
-    k.point = h.point, k.normal = h.normal, k.toi = h.t, k.method = method_of(Tier::Sphere, false);
+    static_cast<Trace&>(k) = h;
+    k.method = method_of(Tier::Sphere, false);
     if (mun) k.method = "continuous-munition";
     return true;
   }
-  return narrow(w, a, b, false, tier, h.t, h.t_exit, k);
+  return narrow(w, a, b, false, tier, h.fraction, h.exit_fraction, k);
 }
 
 bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
@@ -179,7 +140,7 @@ bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
     if ((cb - ca).squaredNorm() >= rr * rr) return false;
     Vec3 p;
     if (!l3_real(w, a, b, p) && !l3_real(w, b, a, p)) return false;
-    k.a = a, k.b = b, k.point = p, k.toi = 1, k.dt_s = 0, k.method = "L3-haines";
+    k.a = a, k.b = b, k.hit = true, k.point = p, k.fraction = 1, k.dt_s = 0, k.method = "L3-haines";
     const Vec3 d = cb - ca;
     k.normal = d.norm() > 1e-9 ? Vec3(d.normalized()) : Vec3::UnitX();
     return true;
@@ -267,7 +228,7 @@ void Detector::detect_continuous(const world::World& w) {
       const Vec3 fc = world::fixed_centre(w, o);  // live: craters re-seat objects
       const double rs = world::fixed_radius(w, o);
       const bool sphere = tier == Tier::Sphere || w.is_munition(e);
-      const SweepHit h = sphere_sweep(c0_[i], c1_[i], sphere ? r_sphere_[i] : r_bound_[i], fc, fc,
+      const Trace h = sphere_sweep(c0_[i], c1_[i], sphere ? r_sphere_[i] : r_bound_[i], fc, fc,
                                       sphere ? rs : std::max<double>(rs, it.r));
       ++stats_.sweep_pairs;
       if (!h.hit) {
@@ -281,8 +242,9 @@ void Detector::detect_continuous(const world::World& w) {
                                                             contact_key(e, static_cast<int>(o), true));
       if (sphere || continuing) {
         ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];
-        k.point = h.point, k.normal = h.normal, k.toi = h.t, k.method = method_of(Tier::Sphere, true);
-      } else if (!narrow(w, e, static_cast<int>(o), true, tier, h.t, h.t_exit, k)) {
+        static_cast<Trace&>(k) = h;
+        k.method = method_of(Tier::Sphere, true);
+      } else if (!narrow(w, e, static_cast<int>(o), true, tier, h.fraction, h.exit_fraction, k)) {
         return;
       }
       touching_.push_back(contact_key(e, static_cast<int>(o), true));
@@ -310,7 +272,7 @@ void Detector::detect_continuous(const world::World& w) {
 
   // Deterministic order: time of impact, then the id ranks (not the storage order).
   std::sort(candidates_.begin(), candidates_.end(), [&](const Contact& x, const Contact& y) {
-    if (x.toi != y.toi) return x.toi < y.toi;
+    if (x.fraction != y.fraction) return x.fraction < y.fraction;
     if (rank_[x.a] != rank_[y.a]) return rank_[x.a] < rank_[y.a];
     if (x.b_fixed != y.b_fixed) return x.b_fixed < y.b_fixed;
     return x.b_fixed ? fixed_rank_[x.b] < fixed_rank_[y.b] : rank_[x.b] < rank_[y.b];

@@ -62,7 +62,7 @@ void Detector::detect_thesis(const world::World& w) {
       const uint64_t key = pair_key(e, o, true);
       touching_.push_back(key);
       Contact k;
-      k.a = e, k.b = o, k.b_fixed = true;
+      k.a = e, k.b = o, k.b_fixed = true, k.hit = true;
       const Vec3 d = fc - c;
       k.normal = d.norm() > 1e-9 ? Vec3(d.normalized()) : Vec3::UnitX();
       k.point = c + k.normal * std::min(r, d.norm());
@@ -112,7 +112,7 @@ void Detector::detect_thesis(const world::World& w) {
       const int lo = std::min(a, b), hi = std::max(a, b);
       touching_.push_back(pair_key(lo, hi, false));
       Contact k;
-      k.a = lo, k.b = hi;
+      k.a = lo, k.b = hi, k.hit = true;
       const Vec3 d = (lo == a ? cb - ca : ca - cb);
       k.normal = d.norm() > 1e-9 ? Vec3(d.normalized()) : Vec3::UnitX();
       k.point = p;

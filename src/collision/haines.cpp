@@ -27,9 +27,9 @@ bool haines_inside(const float* u, const float* v, int n) {
   return (crossings & 1) != 0;
 }
 
-RayHit ray_model(const world::Model& m, const Vec3& origin, const Vec3& dir, double tmin, double tmax) {
-  RayHit best;
-  best.t = std::numeric_limits<double>::infinity();
+Trace ray_model(const world::Model& m, const Vec3& origin, const Vec3& dir, double tmin, double tmax) {
+  Trace best;
+  double best_t = std::numeric_limits<double>::infinity();
   constexpr int kMaxPoly = 64;
   float u[kMaxPoly], v[kMaxPoly];
   for (size_t f = 0; f < m.faces.size(); ++f) {
@@ -40,7 +40,7 @@ RayHit ray_model(const world::Model& m, const Vec3& origin, const Vec3& dir, dou
     if (std::abs(denom) < 1e-12) continue;  // parallel to the plane
     const Vec3 v0 = m.vertices[m.face_vertices[face.first]].cast<double>();
     const double t = n.dot(v0 - origin) / denom;
-    if (t < tmin || t > tmax || t >= best.t) continue;
+    if (t < tmin || t > tmax || t >= best_t) continue;
     const Vec3 q = origin + t * dir;
     // Dominant axis of the normal: project onto the other two (U, V), translate q to the origin.
     int drop = 0;
@@ -54,12 +54,15 @@ RayHit ray_model(const world::Model& m, const Vec3& origin, const Vec3& dir, dou
     }
     if (!haines_inside(u, v, static_cast<int>(face.count))) continue;
     best.hit = true;
-    best.t = t;
+    best_t = t;
     best.point = q;
     best.normal = n;
     best.face = static_cast<int>(f);
   }
-  if (!best.hit) best.t = 0;
+  if (best.hit) {
+    best.fraction = tmax > tmin ? (best_t - tmin) / (tmax - tmin) : 0.0;
+    best.started_inside = best.normal.dot(dir) > 0;
+  }
   return best;
 }
 
@@ -82,9 +85,12 @@ bool l3_real(const world::World& w, int a, int b, Vec3& point) {
   const Mat3 rb = world::pose_rotation(ents.heading_deg[b], ents.pitch_deg[b], ents.roll_deg[b]);
   const Vec3 po = rb.transpose() * (p - ents.pos[b]);
   const Vec3 dir = rb.transpose() * d;
-  const RayHit h = ray_model(w.models[kb.models[ents.state[b]]], po, dir, -2 * ra, dist - ra);
-  if (!h.hit || h.t > 0) return false;
-  point = p + h.t * d;
+  const double tmin = -2 * ra, tmax = dist - ra;
+  const Trace h = ray_model(w.models[kb.models[ents.state[b]]], po, dir, tmin, tmax);
+  if (!h.hit) return false;
+  const double t = (h.point - po).dot(dir);  // along the ray from P (dir is unit)
+  if (t > 0) return false;
+  point = p + t * d;
   return true;
 }
 

@@ -34,7 +34,7 @@ int last_state(const world::Kind& k) { return static_cast<int>(k.states.size()) 
 
 // A continuous contact moves a body back to the time of impact, then on with velocity `to`.
 Vec3 rewind(const Contact& c, const Vec3& from, const Vec3& to) {
-  return c.dt_s > 0 ? Vec3((to - from) * c.dt_s * (1 - c.toi)) : Vec3::Zero();
+  return c.dt_s > 0 ? Vec3((to - from) * c.dt_s * (1 - c.fraction)) : Vec3::Zero();
 }
 
 // Munition contact: "the only response is an explosion" (p. 21).
@@ -190,7 +190,7 @@ void solve_bounces(const world::World& w, const std::vector<const Contact*>& bou
   for (const Contact* c : bounces) {
     for (int side = 0; side < 2; ++side) {
       const size_t i = slot(side ? c->b : c->a);
-      if (c->toi < first_toi[i]) first_toi[i] = c->toi, dt[i] = c->dt_s;
+      if (c->fraction < first_toi[i]) first_toi[i] = c->fraction, dt[i] = c->dt_s;
     }
     if (c->dt_s > 0) continue;
     // Thesis contacts (found at the end of the tick): push the pair apart.

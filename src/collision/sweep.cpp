@@ -6,11 +6,11 @@
 #include <stdexcept>
 
 namespace npsnet::collision {
-SweepHit sphere_sweep(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, const Vec3& b1, double rb) {
+Trace sphere_sweep(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, const Vec3& b1, double rb) {
   if (!finite(a0) || !finite(a1) || !finite(b0) || !finite(b1) || !std::isfinite(ra) || !std::isfinite(rb))
     throw std::invalid_argument("sphere_sweep: position or radius is not finite (NaN or infinite input)");
   if (ra < 0 || rb < 0) throw std::invalid_argument("sphere_sweep: negative radius");
-  SweepHit h;
+  Trace h;
   const Vec3 d0 = b0 - a0;
   const Vec3 v = (b1 - b0) - (a1 - a0);
   const double R = ra + rb;
@@ -21,8 +21,8 @@ SweepHit sphere_sweep(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0,
     throw std::invalid_argument("sphere_sweep: motion overflows (infinite relative displacement)");
   if (C < 0) {  // overlapping at the start
     h.hit = h.started_inside = true;
-    h.t = 0;
-    h.t_exit = A > 0 ? std::min(1.0, (-B + std::sqrt(B * B - A * C)) / A) : 1.0;
+    h.fraction = 0;
+    h.exit_fraction = A > 0 ? std::min(1.0, (-B + std::sqrt(B * B - A * C)) / A) : 1.0;
   } else {
     if (A <= 0 || B >= 0) return h;  // no relative motion, or moving apart (or tangent at t=0)
     const double disc = B * B - A * C;
@@ -32,10 +32,10 @@ SweepHit sphere_sweep(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0,
     const double t = C / (-B + s);
     if (t > 1) return h;
     h.hit = true;
-    h.t = t;
-    h.t_exit = std::min(1.0, (-B + s) / A);
+    h.fraction = t;
+    h.exit_fraction = std::min(1.0, (-B + s) / A);
   }
-  const Vec3 ca = a0 + h.t * (a1 - a0), cb = b0 + h.t * (b1 - b0);
+  const Vec3 ca = a0 + h.fraction * (a1 - a0), cb = b0 + h.fraction * (b1 - b0);
   const Vec3 d = cb - ca;
   const double n = d.norm();
   if (n > 1e-12 * std::max(1.0, R)) h.normal = d / n;

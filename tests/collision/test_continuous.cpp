@@ -81,8 +81,8 @@ TEST(Continuous, TanksFasterThanTheThesisLimitPassThroughWithThesisCollideWithCo
   const auto c = run_ticks(w2, cont, dt, 6, &tick);
   ASSERT_EQ(c.size(), 1u);
   EXPECT_EQ(tick, 2);  // the tick in which they pass
-  EXPECT_GT(c[0].toi, 0.0);
-  EXPECT_LT(c[0].toi, 1.0);
+  EXPECT_GT(c[0].fraction, 0.0);
+  EXPECT_LT(c[0].fraction, 1.0);
   EXPECT_STREQ(c[0].method, "continuous-mesh");
   // Head-on, on the line y = 1000, meeting where they cross (x = 1000 by symmetry).
   EXPECT_NEAR(c[0].point.y(), 1000, 0.5);
@@ -109,7 +109,7 @@ TEST(Continuous, JetsClosingAt2000MpsCollideAtTheAnalyticTimeAndPoint) {
         d.detect(j.w, c);
         ASSERT_EQ(c.size(), 1u) << "dt " << dt << " frac " << frac;
         const double t = std::max(0.0, (centres0 - R) / (closing * dt));
-        EXPECT_NEAR(c[0].toi, t, 1e-9);
+        EXPECT_NEAR(c[0].fraction, t, 1e-9);
         const double xa = ca1.x() - closing / 2 * dt * (1 - t), xb = cb1.x() + closing / 2 * dt * (1 - t);
         EXPECT_NEAR(c[0].point.x(), 0.5 * (xa + xb), 1e-6);
       }
@@ -121,7 +121,7 @@ TEST(Continuous, JetsClosingAt2000MpsCollideAtTheAnalyticTimeAndPoint) {
         d.detect(j.w, c);
         ASSERT_EQ(c.size(), 1u) << "dt " << dt << " frac " << frac;
         EXPECT_STREQ(c[0].method, "continuous-mesh");
-        EXPECT_NEAR(c[0].toi, frac, 2e-3);
+        EXPECT_NEAR(c[0].fraction, frac, 2e-3);
         const double x_meet = 500 + j.nose + gap / 2;  // midway between the two noses at the start
         EXPECT_NEAR(c[0].point.x(), x_meet, 0.3);
         EXPECT_NEAR(c[0].point.y(), 1000, 0.5);
@@ -171,7 +171,7 @@ TEST(BorderObjects, Figure9LargeObjectAtAGridsquareCornerTouchedFromTheNeighbour
   ASSERT_EQ(c2.size(), 1u);
   EXPECT_TRUE(c2[0].b_fixed);
   EXPECT_EQ(c2[0].b, 0);
-  EXPECT_EQ(c2[0].toi, 0.0);  // overlapping from the start of the tick
+  EXPECT_EQ(c2[0].fraction, 0.0);  // overlapping from the start of the tick
 }
 
 TEST(BorderObjects, ObjectLargerThanAGridsquareIsFoundFromEveryGridsquareItCovers) {

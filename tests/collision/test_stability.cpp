@@ -19,8 +19,8 @@ TEST(Stability, GrazingContactTouchesOnceAndNearMissDoesNot) {
   // b passes a at exactly ra + rb = 3 m: one touching instant, at t = 0.5.
   const auto h = sphere_sweep(Vec3(0, 0, 0), Vec3(0, 0, 0), 1, Vec3(-10, 3, 0), Vec3(10, 3, 0), 2);
   ASSERT_TRUE(h.hit);
-  EXPECT_NEAR(h.t, 0.5, 1e-12);
-  EXPECT_NEAR(h.t_exit, h.t, 1e-6);
+  EXPECT_NEAR(h.fraction, 0.5, 1e-12);
+  EXPECT_NEAR(h.exit_fraction, h.fraction, 1e-6);
   EXPECT_NEAR(h.normal.y(), 1.0, 1e-9);
   EXPECT_NEAR(h.point.y(), 1.0, 1e-9);
   EXPECT_FALSE(sphere_sweep(Vec3(0, 0, 0), Vec3(0, 0, 0), 1, Vec3(-10, 3 + 1e-6, 0), Vec3(10, 3 + 1e-6, 0), 2).hit);
@@ -30,9 +30,9 @@ TEST(Stability, BodiesThatStartOverlappingHitAtTimeZero) {
   const auto h = sphere_sweep(Vec3(0, 0, 0), Vec3(1, 0, 0), 1, Vec3(1.5, 0, 0), Vec3(10, 0, 0), 1);
   ASSERT_TRUE(h.hit);
   EXPECT_TRUE(h.started_inside);
-  EXPECT_EQ(h.t, 0.0);
-  EXPECT_GT(h.t_exit, 0.0);
-  EXPECT_LE(h.t_exit, 1.0);
+  EXPECT_EQ(h.fraction, 0.0);
+  EXPECT_GT(h.exit_fraction, 0.0);
+  EXPECT_LE(h.exit_fraction, 1.0);
 }
 
 TEST(Stability, ZeroRelativeVelocity) {
@@ -40,7 +40,7 @@ TEST(Stability, ZeroRelativeVelocity) {
   EXPECT_FALSE(sphere_sweep(Vec3(0, 0, 0), Vec3(5, 0, 0), 1, Vec3(3, 0, 0), Vec3(8, 0, 0), 1).hit);
   const auto h = sphere_sweep(Vec3(0, 0, 0), Vec3(5, 0, 0), 1, Vec3(1, 0, 0), Vec3(6, 0, 0), 1);
   EXPECT_TRUE(h.hit && h.started_inside);
-  EXPECT_EQ(h.t_exit, 1.0);
+  EXPECT_EQ(h.exit_fraction, 1.0);
 }
 
 TEST(Stability, CoincidentCentresGiveAUnitNormal) {
@@ -103,7 +103,7 @@ TEST(Stability, HugeAndTinyDt) {
     d.detect(w, c);
     if (dt >= 10) {
       ASSERT_EQ(c.size(), 1u) << dt;
-      EXPECT_TRUE(c[0].toi >= 0 && c[0].toi <= 1);
+      EXPECT_TRUE(c[0].fraction >= 0 && c[0].fraction <= 1);
       EXPECT_TRUE(finite(c[0].point));
     } else {
       EXPECT_TRUE(c.empty()) << dt;

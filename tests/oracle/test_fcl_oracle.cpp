@@ -145,7 +145,7 @@ TEST(FclOracle, ContinuousMeshTimeAndPointMatchFclAdvancement) {
     }
     if (!ours) continue;
     ++agree_hit;
-    EXPECT_LT(std::abs(k.toi - t) * speed * dt, 0.05) << "encounter " << n;
+    EXPECT_LT(std::abs(k.fraction - t) * speed * dt, 0.05) << "encounter " << n;
     EXPECT_LT((k.point - mid).norm(), 0.25) << "encounter " << n;
   }
   EXPECT_GT(agree_hit, 100);
@@ -171,7 +171,7 @@ TEST(FclOracle, JetsAt2000MpsTouchAtOurTimeOfImpact) {
     return p;
   };
   // At our time the meshes touch; 1 cm of closing earlier they are apart.
-  EXPECT_LE(fcl_distance(m, mi, pose(a, k.toi), mi, pose(b, k.toi)), 1e-3);
-  const double before = k.toi - 0.01 / (closing * dt);
+  EXPECT_LE(fcl_distance(m, mi, pose(a, k.fraction), mi, pose(b, k.fraction)), 1e-3);
+  const double before = k.fraction - 0.01 / (closing * dt);
   EXPECT_GT(fcl_distance(m, mi, pose(a, before), mi, pose(b, before)), 0.0);
 }
