@@ -106,13 +106,17 @@ bool is_supported_type(std::uint8_t t) noexcept {
     case PduType::Fire:
     case PduType::Detonation:
     case PduType::Collision:
-    case PduType::EntityStateUpdate: return true;
+    case PduType::EntityStateUpdate:
+    case PduType::RemoveEntity:
+    case PduType::StartResume:
+    case PduType::StopFreeze:
+    case PduType::Acknowledge: return true;
   }
   return false;
 }
 
 bool is_supported_version(std::uint8_t v) noexcept {
-  return v == kProtocolVersion6 || v == kProtocolVersion7;
+  return v == kProtocolVersion5 || v == kProtocolVersion6 || v == kProtocolVersion7;
 }
 
 std::size_t encoded_size(const EntityStatePdu& p) noexcept {
@@ -340,6 +344,112 @@ DecodeError decode(std::span<const std::uint8_t> bytes, EntityStateUpdatePdu& p)
   r.euler(p.orientation);
   p.appearance = r.u32();
   read_params(r, n, p.variable_parameters);
+  return DecodeError::None;
+}
+
+
+
+// ---------------------------------------------------------------- Simulation management (12-15)
+namespace {
+void write_clock(Writer& w, const ClockTime& c) {
+  w.u32(static_cast<std::uint32_t>(c.hour));
+  w.u32(c.time_past_hour);
+}
+void read_clock(Reader& r, ClockTime& c) {
+  c.hour = static_cast<std::int32_t>(r.u32());
+  c.time_past_hour = r.u32();
+}
+// Fixed-size PDUs: header checks, then the exact length.
+template <class Pdu>
+DecodeError check_fixed(std::span<const std::uint8_t> bytes, PduType type, Pdu& p, std::size_t size) {
+  if (auto e = check_common(bytes, type, p.header); e != DecodeError::None) return e;
+  if (p.header.length < size) return DecodeError::TooShortForType;
+  if (p.header.length != size) return DecodeError::LengthMismatch;
+  return DecodeError::None;
+}
+template <class Pdu, class Body>
+Result<std::size_t, EncodeError> encode_fixed(const Pdu& p, PduType type, std::size_t size,
+                                              std::span<std::uint8_t> out, Body&& body) {
+  if (out.size() < size) return Result<std::size_t, EncodeError>::failure(EncodeError::BufferTooSmall);
+  Writer w(out.data());
+  write_header(w, p.header, type, size);
+  w.id(p.originating_id);
+  w.id(p.receiving_id);
+  body(w);
+  return size;
+}
+}  // namespace
+
+std::size_t encoded_size(const RemoveEntityPdu&) noexcept { return kRemoveEntitySize; }
+std::size_t encoded_size(const StartResumePdu&) noexcept { return kStartResumeSize; }
+std::size_t encoded_size(const StopFreezePdu&) noexcept { return kStopFreezeSize; }
+std::size_t encoded_size(const AcknowledgePdu&) noexcept { return kAcknowledgeSize; }
+
+Result<std::size_t, EncodeError> encode(const RemoveEntityPdu& p, std::span<std::uint8_t> out) noexcept {
+  return encode_fixed(p, PduType::RemoveEntity, kRemoveEntitySize, out, [&](Writer& w) { w.u32(p.request_id); });
+}
+Result<std::size_t, EncodeError> encode(const StartResumePdu& p, std::span<std::uint8_t> out) noexcept {
+  return encode_fixed(p, PduType::StartResume, kStartResumeSize, out, [&](Writer& w) {
+    write_clock(w, p.real_world_time);
+    write_clock(w, p.simulation_time);
+    w.u32(p.request_id);
+  });
+}
+Result<std::size_t, EncodeError> encode(const StopFreezePdu& p, std::span<std::uint8_t> out) noexcept {
+  return encode_fixed(p, PduType::StopFreeze, kStopFreezeSize, out, [&](Writer& w) {
+    write_clock(w, p.real_world_time);
+    w.u8(p.reason);
+    w.u8(p.frozen_behavior);
+    w.u16(p.padding);
+    w.u32(p.request_id);
+  });
+}
+Result<std::size_t, EncodeError> encode(const AcknowledgePdu& p, std::span<std::uint8_t> out) noexcept {
+  return encode_fixed(p, PduType::Acknowledge, kAcknowledgeSize, out, [&](Writer& w) {
+    w.u16(p.acknowledge_flag);
+    w.u16(p.response_flag);
+    w.u32(p.request_id);
+  });
+}
+
+DecodeError decode(std::span<const std::uint8_t> bytes, RemoveEntityPdu& p) noexcept {
+  if (auto e = check_fixed(bytes, PduType::RemoveEntity, p, kRemoveEntitySize); e != DecodeError::None) return e;
+  Reader r(bytes.data() + kHeaderSize);
+  r.id(p.originating_id);
+  r.id(p.receiving_id);
+  p.request_id = r.u32();
+  return DecodeError::None;
+}
+DecodeError decode(std::span<const std::uint8_t> bytes, StartResumePdu& p) noexcept {
+  if (auto e = check_fixed(bytes, PduType::StartResume, p, kStartResumeSize); e != DecodeError::None) return e;
+  Reader r(bytes.data() + kHeaderSize);
+  r.id(p.originating_id);
+  r.id(p.receiving_id);
+  read_clock(r, p.real_world_time);
+  read_clock(r, p.simulation_time);
+  p.request_id = r.u32();
+  return DecodeError::None;
+}
+DecodeError decode(std::span<const std::uint8_t> bytes, StopFreezePdu& p) noexcept {
+  if (auto e = check_fixed(bytes, PduType::StopFreeze, p, kStopFreezeSize); e != DecodeError::None) return e;
+  Reader r(bytes.data() + kHeaderSize);
+  r.id(p.originating_id);
+  r.id(p.receiving_id);
+  read_clock(r, p.real_world_time);
+  p.reason = r.u8();
+  p.frozen_behavior = r.u8();
+  p.padding = r.u16();
+  p.request_id = r.u32();
+  return DecodeError::None;
+}
+DecodeError decode(std::span<const std::uint8_t> bytes, AcknowledgePdu& p) noexcept {
+  if (auto e = check_fixed(bytes, PduType::Acknowledge, p, kAcknowledgeSize); e != DecodeError::None) return e;
+  Reader r(bytes.data() + kHeaderSize);
+  r.id(p.originating_id);
+  r.id(p.receiving_id);
+  p.acknowledge_flag = r.u16();
+  p.response_flag = r.u16();
+  p.request_id = r.u32();
   return DecodeError::None;
 }
 

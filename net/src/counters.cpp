@@ -12,6 +12,10 @@ std::string pdu_type_name(std::uint8_t t) {
     case PduType::Detonation: return "detonation";
     case PduType::Collision: return "collision";
     case PduType::EntityStateUpdate: return "entity_state_update";
+    case PduType::RemoveEntity: return "remove_entity";
+    case PduType::StartResume: return "start_resume";
+    case PduType::StopFreeze: return "stop_freeze";
+    case PduType::Acknowledge: return "acknowledge";
   }
   return "type_" + std::to_string(t);
 }

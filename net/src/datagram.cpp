@@ -8,6 +8,10 @@ EntityId originating_entity(const FirePdu& p) noexcept { return p.firing_entity_
 EntityId originating_entity(const DetonationPdu& p) noexcept { return p.firing_entity_id; }
 EntityId originating_entity(const CollisionPdu& p) noexcept { return p.issuing_entity_id; }
 EntityId originating_entity(const EntityStateUpdatePdu& p) noexcept { return p.entity_id; }
+EntityId originating_entity(const RemoveEntityPdu& p) noexcept { return p.originating_id; }
+EntityId originating_entity(const StartResumePdu& p) noexcept { return p.originating_id; }
+EntityId originating_entity(const StopFreezePdu& p) noexcept { return p.originating_id; }
+EntityId originating_entity(const AcknowledgePdu& p) noexcept { return p.originating_id; }
 
 namespace {
 
@@ -67,6 +71,22 @@ DatagramParser::Step DatagramParser::step(std::span<const std::uint8_t> rest, Co
     case PduType::EntityStateUpdate:
       e = decode(rest, esu_);
       origin = esu_.entity_id;
+      break;
+    case PduType::RemoveEntity:
+      e = decode(rest, remove_);
+      origin = remove_.originating_id;
+      break;
+    case PduType::StartResume:
+      e = decode(rest, start_);
+      origin = start_.originating_id;
+      break;
+    case PduType::StopFreeze:
+      e = decode(rest, stop_);
+      origin = stop_.originating_id;
+      break;
+    case PduType::Acknowledge:
+      e = decode(rest, ack_);
+      origin = ack_.originating_id;
       break;
   }
   if (e != DecodeError::None) {

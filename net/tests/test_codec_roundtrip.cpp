@@ -93,8 +93,10 @@ TEST(CodecEncode, RefusesTooManyVariableParameters) {
 TEST(CodecDecode, WrongTypeAndVersion) {
   auto b = bytes_of(sample_fire());
   EXPECT_EQ(net::decode_as<net::EntityStatePdu>(b).error(), net::DecodeError::WrongType);
-  b[0] = 5;
+  b[0] = 4;
   EXPECT_EQ(net::decode_as<net::FirePdu>(b).error(), net::DecodeError::UnsupportedVersion);
+  b[0] = 5;  // DIS 5 (1278.1-1995): the same layout, accepted
+  EXPECT_TRUE(net::decode_as<net::FirePdu>(b).ok());
   b[0] = 6;  // DIS 6 has the same layout and is accepted; the version is kept
   auto r = net::decode_as<net::FirePdu>(b);
   ASSERT_TRUE(r.ok());

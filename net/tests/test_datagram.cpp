@@ -84,9 +84,9 @@ TEST(Datagram, BuilderPacksUpToItsLimit) {
 TEST(Datagram, UnknownTypeAndVersionAreSkippedByLength) {
   auto other = bytes_of(sample_fire());
   other[2] = 20;  // Data PDU: not ours
-  auto v5 = bytes_of(sample_collision());
-  v5[0] = 5;
-  const auto d = concat({other, v5, bytes_of(sample_fire())});
+  auto v4 = bytes_of(sample_collision());
+  v4[0] = 4;  // DIS 4 (1278.1-1993 draft): not ours; 5, 6 and 7 are
+  const auto d = concat({other, v4, bytes_of(sample_fire())});
   std::size_t n = 0;
   const auto c = walk(d, &n);
   EXPECT_EQ(n, 1u);

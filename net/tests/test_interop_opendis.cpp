@@ -165,6 +165,38 @@ Fields flatten(const net::EntityStateUpdatePdu& p, const std::string& i) {
   return f.fields();
 }
 
+// Simulation management (open-dis dis7 field names).
+template <class Pdu>
+Flat siman(const Pdu& p, const std::string& i) {
+  Flat f(i);
+  f.header(p.header);
+  f.id("originatingEntityID", p.originating_id);
+  f.id("receivingEntityID", p.receiving_id);
+  f.put("requestID", p.request_id);
+  return f;
+}
+void clock(Flat& f, const std::string& k, const net::ClockTime& c) {
+  f.put(k + ".hour", c.hour), f.put(k + ".timePastHour", c.time_past_hour);
+}
+Fields flatten(const net::RemoveEntityPdu& p, const std::string& i) { return siman(p, i).fields(); }
+Fields flatten(const net::StartResumePdu& p, const std::string& i) {
+  Flat f = siman(p, i);
+  clock(f, "realWorldTime", p.real_world_time);
+  clock(f, "simulationTime", p.simulation_time);
+  return f.fields();
+}
+Fields flatten(const net::StopFreezePdu& p, const std::string& i) {
+  Flat f = siman(p, i);
+  clock(f, "realWorldTime", p.real_world_time);
+  f.put("reason", p.reason), f.put("frozenBehavior", p.frozen_behavior), f.put("padding1", p.padding);
+  return f.fields();
+}
+Fields flatten(const net::AcknowledgePdu& p, const std::string& i) {
+  Flat f = siman(p, i);
+  f.put("acknowledgeFlag", p.acknowledge_flag), f.put("responseFlag", p.response_flag);
+  return f.fields();
+}
+
 Fields parse_lines(const std::string& text) {
   Fields m;
   for (const auto& line : split(text, '\n')) {

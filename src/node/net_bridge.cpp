@@ -71,6 +71,7 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
                                             dr_thresholds(o.timeout_s).heartbeat_s);
   prev_vel_ecef_.assign(own_.size(), Vec3::Zero());
   prev_heading_.assign(own_.size(), 0.f);
+  removed_.assign(own_.size(), 0);
   for (size_t i = 0; i < own_.size(); ++i) prev_heading_[i] = ents.heading_deg[own_[i]];
   fixed_net_state_.assign(w.fixed.size(), -1);
   for (size_t f = 0; f < w.fixed.size(); ++f) fixed_net_state_[f] = static_cast<int16_t>(w.fixed.state[f]);
@@ -138,15 +139,22 @@ nlohmann::json NetBridge::event(const char* type) const {
 // ---------------------------------------------------------------- receive ----
 
 void NetBridge::receive(std::span<const std::uint8_t> datagram, double arrival_s) {
+  const bool process = !frozen_ || (frozen_behavior_ & 4);  // a freeze may stop processing updates
   session_->parse(datagram, net::Overloaded{
+                                [&](const net::StopFreezePdu& p) { on_stop_freeze(p); },
+                                [&](const net::StartResumePdu& p) { on_start_resume(p); },
+                                [&](const net::RemoveEntityPdu& p) { on_remove_entity(p); },
                                 [&](const net::EntityStatePdu& p) {
+                                  if (!process) return;
                                   if (p.entity_type.kind == dis::kEntityKindCultural &&
                                       (p.entity_id.application & kCulturalAppBit))
                                     on_cultural(p);
                                   else if (p.entity_type.kind != dis::kEntityKindMunition)  // rounds: Fire / Detonation
                                     remotes_.on_entity_state(p, arrival_s);
                                 },
-                                [&](const net::EntityStateUpdatePdu& p) { remotes_.on_update(p, arrival_s); },
+                                [&](const net::EntityStateUpdatePdu& p) {
+                                  if (process) remotes_.on_update(p, arrival_s);
+                                },
                                 [&](const net::FirePdu& p) { on_fire(p); },
                                 [&](const net::DetonationPdu& p) { on_detonation(p); },
                                 [&](const net::CollisionPdu& p) { on_collision(p); }});
@@ -316,6 +324,7 @@ void NetBridge::publish_vehicles() {
   for (size_t k = 0; k < n; ++k) {
     const size_t i = (rr_ + k) % n;
     const int e = own_[i];
+    if (removed_[i]) continue;  // taken out by a Remove Entity
     net::KinematicState s = entity_truth(w, e);
     const Vec3 v = vv(s.velocity);
     s.acceleration = ev((v - prev_vel_ecef_[i]) / dt);
@@ -359,14 +368,17 @@ void NetBridge::flush_batch() {
   batch_.clear();
 }
 
-void NetBridge::leave() {
+void NetBridge::send_deactivation(int e) {
   const auto& w = sim_.world();
-  for (const int e : own_) {
-    const std::uint32_t app = damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]) | net::kAppearanceDeactivated;
-    fill_entity_state(w, e, own_id(e), entity_truth(w, e), net::DrAlgorithm::Static, app,
-                      static_cast<std::uint8_t>(opt_.exercise), es_);
-    session_->send_to(group_at(w.ents.pos[e]), es_);
-  }
+  const std::uint32_t app = damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]) | net::kAppearanceDeactivated;
+  fill_entity_state(w, e, own_id(e), entity_truth(w, e), net::DrAlgorithm::Static, app,
+                    static_cast<std::uint8_t>(opt_.exercise), es_);
+  session_->send_to(group_at(w.ents.pos[e]), es_);
+}
+
+void NetBridge::leave() {
+  for (size_t i = 0; i < own_.size(); ++i)
+    if (!removed_[i]) send_deactivation(own_[i]);
 }
 
 void NetBridge::publish_collisions(const TickReport& r) {

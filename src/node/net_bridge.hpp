@@ -102,6 +102,18 @@ class NetBridge {
   // Handles a pending SIGUSR1 (prints the summary to stderr).
   void check_signal();
 
+  // Simulation management (sim_management.cpp). frozen() says whether the scenario clock stands
+  // still now (a Stop/Freeze took effect at its real-world time and no Start/Resume has yet);
+  // while it does, the run loop calls idle() instead of ticking: it receives (Entity States only
+  // when the freeze's frozen behaviour has "process updates", bit 2), answers simulation
+  // management, and sends heartbeats of our vehicles standing still with the Frozen Status
+  // appearance bit (21) only when it has "transmit updates" (bit 1). Start/Resume restarts the
+  // clock at its real-world time and, when its simulation time is not zero, at that scenario
+  // time (s). Remove Entity (receiving id = one of our vehicles, or entity 0xFFFF = all of
+  // them) takes it out: a deactivation Entity State, no more publishing, inactive here.
+  bool frozen();
+  void idle();
+
  private:
   net::EntityId own_id(int e) const { return ownership_.own_id(e); }
   bool is_own_vehicle(int e) const;
@@ -122,6 +134,12 @@ class NetBridge {
   void publish_fires(const TickReport& r);
   void publish_detonations(const TickReport& r);
   void send_cultural(int object);
+  void send_deactivation(int e);
+  bool addressed_to_us(const net::EntityId& receiving) const;
+  void acknowledge(const net::EntityId& to, std::uint16_t flag, std::uint16_t response, std::uint32_t request);
+  void on_stop_freeze(const net::StopFreezePdu& p);
+  void on_start_resume(const net::StartResumePdu& p);
+  void on_remove_entity(const net::RemoveEntityPdu& p);
   void flush_batch();
   // The group a PDU about the local point p goes to (the --net destination without --aoi).
   std::uint32_t group_at(const Vec3& p) const { return aoi_ ? aoi_->group_at(p) : net::Session::kDestination; }
@@ -145,6 +163,11 @@ class NetBridge {
   std::vector<std::uint32_t> sent_group_;  // per own vehicle: the group of its last Entity State
   std::unique_ptr<AreaOfInterest> aoi_;
   std::vector<float> prev_heading_;
+  std::vector<std::uint8_t> removed_;  // per local vehicle: taken out by a Remove Entity
+  // Simulation management: pending freeze / resume (UNIX s, -1 none), scenario time to resume at.
+  double freeze_at_ = -1, resume_at_ = -1, resume_sim_t_ = -1, frozen_hb_s_ = 0;
+  bool frozen_ = false;
+  std::uint8_t frozen_behavior_ = 0;
   std::uint64_t ground_es_sent_ = 0;
   int ground_vehicles_ = 0;
   net::EntityStatePdu es_;      // reused

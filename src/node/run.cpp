@@ -154,13 +154,20 @@ int run_command(const RunOptions& opt) {
   const bool paced = o.realtime || o.window || net_on;  // --net: scenario time = wall time
   if (o.start_at)
     while (wall_now() < *o.start_at) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  const auto t0 = std::chrono::steady_clock::now();
+  auto t0 = std::chrono::steady_clock::now();
   long next_progress = ticks / 10;
   // The run goes on past its length (at most kResultDelayS more) until every result frame is written.
   const long extra = static_cast<long>(std::ceil(2.0 / o.dt)) + 1;
   long done = 0;
   try {
     for (long i = 0; i < ticks || (more() && i < ticks + extra); ++i, ++done) {
+#ifdef NPSNET_HAVE_NET
+      if (bridge && bridge->frozen()) {  // Stop/Freeze: the scenario clock stands still
+        const auto f0 = std::chrono::steady_clock::now();
+        while (bridge->frozen()) bridge->idle();
+        t0 += std::chrono::steady_clock::now() - f0;
+      }
+#endif
       sim.tick();
 #ifdef NPSNET_HAVE_RENDER
       if (o.window && snaps && !snaps->present(sim.world())) break;  // window closed

@@ -146,6 +146,10 @@ void append(world::Changes& to, const world::Changes& from) {
 }  // namespace
 
 void Simulation::inject(const world::Changes& c) { append(injected_, c); }
+void Simulation::set_time(double t) {
+  w_.frame = std::llround(std::max(0.0, t) / dt_);
+  w_.t = w_.frame * dt_;
+}
 void Simulation::inject_detonation(const world::DetonationRecord& d) { injected_detonations_.push_back(d); }
 
 void Simulation::tick() {

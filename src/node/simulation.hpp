@@ -28,6 +28,9 @@ class Simulation {
   world::World& world() { return w_; }
   const world::World& world() const { return w_; }
   double dt() const { return dt_; }
+  // Sets the scenario clock to t seconds (rounded to a whole tick): a Start/Resume's simulation
+  // time. Scheduled fires before t that have not happened go at the next tick.
+  void set_time(double t);
   const collision::DetectStats& stats() const { return detector_.stats(); }
   std::function<void(const TickReport&)> on_tick;  // renderer, snapshots, network
   // Runs after the outcomes are decided, before they are applied (imminent snapshots).

@@ -7,8 +7,8 @@
 //  * decode(bytes, out) reads the one PDU at the start of `bytes` (the header's length says how
 //    long it is; bytes past it are ignored) into `out`, reusing `out`'s vector capacity, so a
 //    decoder that keeps its structs allocates nothing in steady state. Network input never
-//    throws: every problem is a DecodeError. Protocol versions 6 and 7 are accepted (the layout
-//    of these five PDUs is the same); the version octet is kept for re-encoding.
+//    throws: every problem is a DecodeError. Protocol versions 5, 6 and 7 are accepted (the
+//    layouts of these PDUs are the same); the version octet is kept for re-encoding.
 //  * Padding and opaque octets are kept, so decode -> encode gives back the same bytes.
 #pragma once
 
@@ -54,12 +54,20 @@ std::size_t encoded_size(const FirePdu& p) noexcept;
 std::size_t encoded_size(const DetonationPdu& p) noexcept;
 std::size_t encoded_size(const CollisionPdu& p) noexcept;
 std::size_t encoded_size(const EntityStateUpdatePdu& p) noexcept;
+std::size_t encoded_size(const RemoveEntityPdu& p) noexcept;
+std::size_t encoded_size(const StartResumePdu& p) noexcept;
+std::size_t encoded_size(const StopFreezePdu& p) noexcept;
+std::size_t encoded_size(const AcknowledgePdu& p) noexcept;
 
 Result<std::size_t, EncodeError> encode(const EntityStatePdu& p, std::span<std::uint8_t> out) noexcept;
 Result<std::size_t, EncodeError> encode(const FirePdu& p, std::span<std::uint8_t> out) noexcept;
 Result<std::size_t, EncodeError> encode(const DetonationPdu& p, std::span<std::uint8_t> out) noexcept;
 Result<std::size_t, EncodeError> encode(const CollisionPdu& p, std::span<std::uint8_t> out) noexcept;
 Result<std::size_t, EncodeError> encode(const EntityStateUpdatePdu& p, std::span<std::uint8_t> out) noexcept;
+Result<std::size_t, EncodeError> encode(const RemoveEntityPdu& p, std::span<std::uint8_t> out) noexcept;
+Result<std::size_t, EncodeError> encode(const StartResumePdu& p, std::span<std::uint8_t> out) noexcept;
+Result<std::size_t, EncodeError> encode(const StopFreezePdu& p, std::span<std::uint8_t> out) noexcept;
+Result<std::size_t, EncodeError> encode(const AcknowledgePdu& p, std::span<std::uint8_t> out) noexcept;
 
 // Appends the encoded PDU to `out` (convenience; allocates as a vector does).
 template <class Pdu>
@@ -79,6 +87,10 @@ DecodeError decode(std::span<const std::uint8_t> bytes, FirePdu& out) noexcept;
 DecodeError decode(std::span<const std::uint8_t> bytes, DetonationPdu& out) noexcept;
 DecodeError decode(std::span<const std::uint8_t> bytes, CollisionPdu& out) noexcept;
 DecodeError decode(std::span<const std::uint8_t> bytes, EntityStateUpdatePdu& out) noexcept;
+DecodeError decode(std::span<const std::uint8_t> bytes, RemoveEntityPdu& out) noexcept;
+DecodeError decode(std::span<const std::uint8_t> bytes, StartResumePdu& out) noexcept;
+DecodeError decode(std::span<const std::uint8_t> bytes, StopFreezePdu& out) noexcept;
+DecodeError decode(std::span<const std::uint8_t> bytes, AcknowledgePdu& out) noexcept;
 
 // Convenience: decode into a fresh struct, e.g. decode_as<FirePdu>(bytes).
 template <class Pdu>
@@ -91,7 +103,7 @@ Result<Pdu, DecodeError> decode_as(std::span<const std::uint8_t> bytes) {
 
 // True for the PDU types decoded above.
 bool is_supported_type(std::uint8_t pdu_type) noexcept;
-// True for protocol versions 6 and 7.
+// True for protocol versions 5 (1278.1-1995), 6 and 7.
 bool is_supported_version(std::uint8_t protocol_version) noexcept;
 
 }  // namespace net

@@ -3,16 +3,18 @@
 //  * PDUs are walked in order using each header's length field. Each one is counted once in
 //    `counters` (see net/counters.hpp) and, if it decodes and passes the filter, handed to the
 //    visitor as `const EntityStatePdu&`, `const FirePdu&`, `const DetonationPdu&`,
-//    `const CollisionPdu&` or `const EntityStateUpdatePdu&`; overloads the visitor does not
+//    `const CollisionPdu&`, `const EntityStateUpdatePdu&`, or a simulation management PDU
+//    (`const RemoveEntityPdu&`, `StartResumePdu`, `StopFreezePdu`, `AcknowledgePdu`); overloads the visitor does not
 //    accept are skipped at compile time (e.g. a lambda taking only `const FirePdu&`).
-//  * Versions other than 6/7 and types other than those five are skipped (counted) using their
+//  * Versions other than 5/6/7 and types other than those are skipped (counted) using their
 //    length; inconsistent PDUs are rejected with a counted DecodeError. A length field < 12 or
 //    past the end of the datagram stops the walk. Every step advances >= 12 octets, so the walk
 //    ends after at most size/12 PDUs; no input can crash it or make it loop.
 //  * The references passed to the visitor point into the parser's scratch structs: valid only
 //    during the call. The parser allocates nothing once its scratch vectors have grown.
 //  * Filter: PDUs of another exercise are ignored (counted); PDUs whose originating entity
-//    (ES/ESU entity, Fire/Detonation firing entity, Collision issuing entity) has our site and
+//    (ES/ESU entity, Fire/Detonation firing entity, Collision issuing entity, simulation
+//    management originating id) has our site and
 //    application are our own echo and are ignored (counted).
 #pragma once
 
@@ -42,6 +44,10 @@ EntityId originating_entity(const FirePdu& p) noexcept;
 EntityId originating_entity(const DetonationPdu& p) noexcept;
 EntityId originating_entity(const CollisionPdu& p) noexcept;
 EntityId originating_entity(const EntityStateUpdatePdu& p) noexcept;
+EntityId originating_entity(const RemoveEntityPdu& p) noexcept;
+EntityId originating_entity(const StartResumePdu& p) noexcept;
+EntityId originating_entity(const StopFreezePdu& p) noexcept;
+EntityId originating_entity(const AcknowledgePdu& p) noexcept;
 
 // Builds one visitor from several lambdas: parse(d, c, net::Overloaded{[](const FirePdu&){...},
 // [](const EntityStatePdu&){...}}).
@@ -92,6 +98,10 @@ class DatagramParser {
       case PduType::Detonation: call(v, det_); break;
       case PduType::Collision: call(v, col_); break;
       case PduType::EntityStateUpdate: call(v, esu_); break;
+      case PduType::RemoveEntity: call(v, remove_); break;
+      case PduType::StartResume: call(v, start_); break;
+      case PduType::StopFreeze: call(v, stop_); break;
+      case PduType::Acknowledge: call(v, ack_); break;
     }
   }
   template <class Visitor, class Pdu>
@@ -105,6 +115,10 @@ class DatagramParser {
   DetonationPdu det_;
   CollisionPdu col_;
   EntityStateUpdatePdu esu_;
+  RemoveEntityPdu remove_;
+  StartResumePdu start_;
+  StopFreezePdu stop_;
+  AcknowledgePdu ack_;
 };
 
 // Packs encoded PDUs back to back into one datagram of at most max_size octets (default 1400,

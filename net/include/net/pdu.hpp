@@ -1,6 +1,7 @@
 // net/pdu.hpp — plain DIS 7 (IEEE 1278.1-2012) PDU structs, as they travel on the wire.
-// Contract: every field of the five PDU types we speak (Entity State 1, Fire 2, Detonation 3,
-// Collision 4, Entity State Update 67) has a member here, including padding and opaque bytes,
+// Contract: every field of the PDU types we speak (Entity State 1, Fire 2, Detonation 3,
+// Collision 4, Entity State Update 67; simulation management: Remove Entity 12, Start/Resume 13,
+// Stop/Freeze 14, Acknowledge 15) has a member here, including padding and opaque bytes,
 // so that decode followed by encode gives back the same bytes. Units: positions WGS84 ECEF
 // metres (double), velocities m/s and accelerations m/s^2 (float, world frame unless the DR
 // algorithm says body), orientations DIS Euler angles psi/theta/phi in radians (float), angular
@@ -21,19 +22,29 @@ enum class PduType : std::uint8_t {
   Fire = 2,
   Detonation = 3,
   Collision = 4,
+  RemoveEntity = 12,
+  StartResume = 13,
+  StopFreeze = 14,
+  Acknowledge = 15,
   EntityStateUpdate = 67,
 };
 
-enum class ProtocolFamily : std::uint8_t { EntityInformation = 1, Warfare = 2 };
+enum class ProtocolFamily : std::uint8_t { EntityInformation = 1, Warfare = 2, SimulationManagement = 5 };
 
 inline constexpr std::uint8_t kProtocolVersion7 = 7;
-inline constexpr std::uint8_t kProtocolVersion6 = 6;  // same layout for our five types
+inline constexpr std::uint8_t kProtocolVersion6 = 6;  // same layout for our types
+inline constexpr std::uint8_t kProtocolVersion5 = 5;  // IEEE 1278.1-1995: same layouts (header
+                                                      // octets 10-11 are padding)
 inline constexpr std::size_t kHeaderSize = 12;
 inline constexpr std::size_t kEntityStateFixedSize = 144;
 inline constexpr std::size_t kFireSize = 96;
 inline constexpr std::size_t kDetonationFixedSize = 104;
 inline constexpr std::size_t kCollisionSize = 60;
 inline constexpr std::size_t kEntityStateUpdateFixedSize = 72;
+inline constexpr std::size_t kRemoveEntitySize = 28;
+inline constexpr std::size_t kStartResumeSize = 44;
+inline constexpr std::size_t kStopFreezeSize = 40;
+inline constexpr std::size_t kAcknowledgeSize = 32;
 inline constexpr std::size_t kVariableParameterSize = 16;
 inline constexpr std::size_t kMaxPduSize = 8192;  // Annex C maximum PDU size (octets)
 inline constexpr std::size_t kMaxVariableParameters = 255;  // the count is a u8
@@ -201,6 +212,64 @@ struct EntityStateUpdatePdu {
   friend bool operator==(const EntityStateUpdatePdu&, const EntityStateUpdatePdu&) = default;
 };
 
+// Clock time: hours since 1970-01-01 00:00 UTC (simulation time: hours of the exercise) and a
+// DIS timestamp past that hour (net/timestamp.hpp).
+struct ClockTime {
+  std::int32_t hour = 0;
+  std::uint32_t time_past_hour = 0;
+  friend bool operator==(const ClockTime&, const ClockTime&) = default;
+};
+
+// Simulation management (family 5), IEEE 1278.1-2012 7.5: originating and receiving entity ids
+// name a simulation (site, application, 0) or an entity; 0xFFFF in a field means "all".
+// Remove Entity, type 12: 28.
+struct RemoveEntityPdu {
+  PduHeader header{kProtocolVersion7, 1, 12, 5};
+  EntityId originating_id;
+  EntityId receiving_id;
+  std::uint32_t request_id = 0;
+  friend bool operator==(const RemoveEntityPdu&, const RemoveEntityPdu&) = default;
+};
+
+// Start/Resume, type 13: 44.
+struct StartResumePdu {
+  PduHeader header{kProtocolVersion7, 1, 13, 5};
+  EntityId originating_id;
+  EntityId receiving_id;
+  ClockTime real_world_time;  // when to start (UTC); zero or past = now
+  ClockTime simulation_time;  // the simulation time to start at
+  std::uint32_t request_id = 0;
+  friend bool operator==(const StartResumePdu&, const StartResumePdu&) = default;
+};
+
+// Stop/Freeze, type 14: 40.
+struct StopFreezePdu {
+  PduHeader header{kProtocolVersion7, 1, 14, 5};
+  EntityId originating_id;
+  EntityId receiving_id;
+  ClockTime real_world_time;    // when to stop (UTC); zero or past = now
+  std::uint8_t reason = 0;      // 0 other, 1 recess, 2 termination, 3 system failure, ...
+  std::uint8_t frozen_behavior = 0;  // bit 0 run simulation clock, 1 transmit updates, 2 process updates
+  std::uint16_t padding = 0;
+  std::uint32_t request_id = 0;
+  friend bool operator==(const StopFreezePdu&, const StopFreezePdu&) = default;
+};
+
+// Acknowledge, type 15: 32.
+struct AcknowledgePdu {
+  PduHeader header{kProtocolVersion7, 1, 15, 5};
+  EntityId originating_id;
+  EntityId receiving_id;
+  std::uint16_t acknowledge_flag = 0;  // 1 create entity, 2 remove entity, 3 start/resume, 4 stop/freeze
+  std::uint16_t response_flag = 0;     // 0 other, 1 able to comply, 2 unable to comply, 3 pending
+  std::uint32_t request_id = 0;
+  friend bool operator==(const AcknowledgePdu&, const AcknowledgePdu&) = default;
+};
+
+inline constexpr std::uint16_t kAllSites = 0xFFFF, kAllApplications = 0xFFFF, kAllEntities = 0xFFFF;
+
+// Entity appearance bit 21: Frozen Status (1 frozen).
+inline constexpr std::uint32_t kAppearanceFrozen = 1u << 21;
 // Entity appearance bit 23: State (0 active, 1 deactivated) — an entity leaving the exercise.
 inline constexpr std::uint32_t kAppearanceDeactivated = 1u << 23;
 
