@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dynamics/drive.hpp"
 #include "dynamics/dynamics.hpp"
 #include "world/pose.hpp"
 
@@ -38,6 +39,7 @@ void step_vehicle(world::World& w, int e, double dt) {
   // Steering: fleeing overrides the route; otherwise the current waypoint, if any.
   double heading = ents.heading_deg[e];
   double speed = std::min<double>(ents.cruise_mps[e], ents.max_mps[e]);
+  if (k.fuel_l > 0 && ents.fuel_l[e] <= 0) speed = 0;  // an empty tank stops the vehicle
   auto& route = ents.route[e];
   if (ents.flee_until[e] > w.t) {
     speed = ents.max_mps[e];
@@ -79,8 +81,7 @@ void step_vehicle(world::World& w, int e, double dt) {
   ents.heading_deg[e] = static_cast<float>(heading);
   if (k.mobility == Mobility::Ground) follow_terrain(w, e);
   if (k.mobility == Mobility::Ship || k.mobility == Mobility::Air) ents.pitch_deg[e] = ents.roll_deg[e] = 0;
-  // Fuel: a simple burn in proportion to distance (for the HUD).
-  ents.fuel_l[e] = std::max(0.0f, ents.fuel_l[e] - static_cast<float>(speed * dt * 0.002));
+  burn_fuel(w, e, speed, dt);
 }
 
 // March the segment from `a` to `b` along the heightfield in steps of half a post; bisect the
@@ -170,7 +171,7 @@ void follow_terrain(world::World& w, int e) {
 void step(world::World& w, double dt, std::vector<GroundImpact>& impacts) {
   auto& ents = w.ents;
   for (int e = 0; e < static_cast<int>(ents.size()); ++e) {
-    if (!ents.active[e] || !ents.local[e]) continue;
+    if (!ents.active[e] || !ents.local[e] || ents.driven[e]) continue;  // a player drives it: drive.hpp
     if (w.kinds[ents.kind[e]].mobility == Mobility::Munition) step_munition(w, e, dt, impacts);
     else step_vehicle(w, e, dt);
   }

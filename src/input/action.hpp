@@ -21,7 +21,7 @@ struct Action {
   double value = 0;                   // throttle / steer / climb, -1..1
   std::string to;                     // switch: vehicle id; empty = the next live vehicle
   std::optional<CameraMode> camera;   // camera: the mode; none = the next mode
-  bool operator==(const Action&) const = default;
+  int line = 0;                       // its line in an input file (0: from a device)
 };
 
 const char* action_name(ActionType a);

@@ -73,6 +73,7 @@ std::vector<Action> read_actions(const std::filesystem::path& file) {
       continue;
     }
     last_t = a.t;
+    a.line = n;
     out.push_back(std::move(a));
   }
   if (!problems.empty()) throw world::InputError(std::move(problems));

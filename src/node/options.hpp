@@ -27,6 +27,10 @@ struct RunOptions {
   int width = 960, height = 540;
   bool no_render = false;
   bool quiet = false;
+  // The player (shared/ARCHITECTURE.md, "Player"): with --window, --drive, --input or
+  // --record-input this node has a player driving one of its vehicles.
+  std::string drive;                           // "" = the first vehicle of this node
+  std::filesystem::path input, record_input;   // JSON Lines actions to replay / to write
 };
 
 // Returns the process exit code: 0 ok, 2 bad input, 1 internal failure.

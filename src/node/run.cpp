@@ -5,8 +5,11 @@
 #include <cstdio>
 #include <thread>
 
+#include "input/action_file.hpp"
 #include "node/options.hpp"
+#include "node/player.hpp"
 #ifdef NPSNET_HAVE_RENDER
+#include "node/player_window.hpp"
 #include "node/snapshots.hpp"
 #endif
 #include "node/simulation.hpp"
@@ -95,13 +98,52 @@ int run_command(const RunOptions& opt) {
     print_problems(e);
     return 2;
   }
+  std::vector<input::Action> script;
+  if (!o.input.empty()) {
+    try {
+      script = input::read_actions(o.input);
+    } catch (const world::InputError& e) {
+      print_problems(e);
+      return 2;
+    }
+  }
   const long ticks = o.frames ? *o.frames
                               : static_cast<long>(std::ceil((o.seconds ? *o.seconds : sc.duration_s) / o.dt - 1e-9));
   if (o.events.empty()) o.events = o.snapshots / "events.jsonl";
+  const bool has_player = o.window || !o.drive.empty() || !o.input.empty() || !o.record_input.empty();
+  if (!o.input.empty() && !o.record_input.empty() &&
+      std::filesystem::weakly_canonical(o.record_input) == std::filesystem::weakly_canonical(o.input)) {
+    std::fprintf(stderr, "--record-input %s: would overwrite the --input file\n", o.record_input.string().c_str());
+    return 2;
+  }
+  int first_driven = -1;
+  if (has_player) {
+    try {
+      first_driven = Player::first_vehicle(w, o.node, !net_on, o.drive, script, o.input.string());
+    } catch (const world::InputError& e) {
+      print_problems(e);
+      return 2;
+    }
+  }
+  std::unique_ptr<input::ActionRecorder> recorder;
+  if (!o.record_input.empty()) {
+    try {
+      recorder = std::make_unique<input::ActionRecorder>(o.record_input);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "--record-input %s\n", e.what());
+      return 2;
+    }
+  }
   // Outputs are checked before anything is written: the snapshot folder (when rendering), the
   // renderer, then the event log is opened (truncated) last.
   EventLog log;
   Simulation sim(std::move(w), sc, log, o.dt);
+  std::unique_ptr<Player> player;
+  if (has_player) {
+    player = std::make_unique<Player>(sim, log, first_driven, std::move(script));
+    if (recorder) player->record_to(std::move(recorder));
+    sim.before_dynamics = [&] { player->before_dynamics(); };
+  }
 #ifdef NPSNET_HAVE_RENDER
   std::unique_ptr<Snapshots> snaps;
   if (!o.no_render || o.window) {
@@ -120,7 +162,10 @@ int run_command(const RunOptions& opt) {
       return 1;
     }
     sim.before_apply = [&](const world::World& ww, const world::Changes& c) { snaps->before_apply(ww, c); };
-    sim.on_tick = [&](const TickReport& r) { snaps->after_tick(sim.world(), r.changes, r.applied); };
+    sim.on_tick = [&](const TickReport& r) {
+      snaps->set_driven(sim.driven());
+      snaps->after_tick(sim.world(), r.changes, r.applied);
+    };
   }
 #endif
   try {
@@ -133,6 +178,8 @@ int run_command(const RunOptions& opt) {
     std::fprintf(stderr, "npsnet: %s: %zu fixed objects, %zu vehicles, %ld ticks of %.3f s\n", o.scenario.string().c_str(),
                  sim.world().fixed.size(), sim.world().ents.size(), ticks, o.dt);
 #ifdef NPSNET_HAVE_RENDER
+  std::unique_ptr<PlayerWindow> window;
+  if (o.window && snaps) window = std::make_unique<PlayerWindow>(*snaps, player.get());
   auto more = [&] { return snaps && snaps->pending(); };
 #else
   auto more = [] { return false; };
@@ -168,11 +215,24 @@ int run_command(const RunOptions& opt) {
         t0 += std::chrono::steady_clock::now() - f0;
       }
 #endif
-      sim.tick();
+      const auto deadline = t0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                     std::chrono::duration<double>((i + 1) * o.dt));
 #ifdef NPSNET_HAVE_RENDER
-      if (o.window && snaps && !snaps->present(sim.world())) break;  // window closed
+      if (window) window->before_tick();
+      sim.tick();
+      if (window && !window->present(sim)) {  // window closed
+        ++done;
+        break;
+      }
+      if (paced && window) window->wait_until(deadline);
+#else
+      sim.tick();
 #endif
-      if (paced) std::this_thread::sleep_until(t0 + std::chrono::duration<double>((i + 1) * o.dt));
+      if (player && player->quit()) {  // Esc, or a quit action
+        ++done;
+        break;
+      }
+      if (paced) std::this_thread::sleep_until(deadline);
       if (!o.quiet && i + 1 >= next_progress && ticks >= 10) {
         std::fprintf(stderr, "npsnet: t = %.1f s (%ld%%)\n", sim.world().t, (i + 1) * 100 / ticks);
         next_progress += ticks / 10;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "collision/ground.hpp"
 #include "dynamics/autonomous.hpp"
 #include "world/pose.hpp"
 
@@ -91,9 +92,10 @@ void Simulation::log_changes() {
   for (const auto& c : changes_.collisions) {
     auto ev = base("collision");
     ev["a"] = ents.id[c.a];
-    ev["b"] = c.b_fixed ? w_.fixed.id[c.b] : ents.id[c.b];
+    const bool ground = !c.b_fixed && c.b < 0;
+    ev["b"] = ground ? "ground" : c.b_fixed ? w_.fixed.id[c.b] : ents.id[c.b];
     ev["a_kind"] = w_.kinds[ents.kind[c.a]].name;
-    ev["b_kind"] = c.b_fixed ? w_.kinds[w_.fixed.kind[c.b]].name : w_.kinds[ents.kind[c.b]].name;
+    ev["b_kind"] = ground ? "terrain" : c.b_fixed ? w_.kinds[w_.fixed.kind[c.b]].name : w_.kinds[ents.kind[c.b]].name;
     ev["point"] = vec(c.point);
     ev["closing_speed_mps"] = round3(c.closing_speed_mps);
     ev["angle_deg"] = round3(c.angle_deg);
@@ -145,6 +147,12 @@ void append(world::Changes& to, const world::Changes& from) {
 }
 }  // namespace
 
+void Simulation::set_driven(int e) {
+  if (driven_ >= 0) w_.ents.driven[driven_] = 0;
+  driven_ = e;
+  if (e >= 0) w_.ents.driven[e] = 1;
+}
+
 void Simulation::inject(const world::Changes& c) { append(injected_, c); }
 void Simulation::set_time(double t) {
   w_.frame = std::llround(std::max(0.0, t) / dt_);
@@ -158,9 +166,12 @@ void Simulation::tick() {
   applied_.clear();
   contacts_.clear();
   impacts_.clear();
+  crashes_.clear();
   if (before_step) before_step(w_);
   scheduled_fires();
+  if (before_dynamics) before_dynamics();
   dynamics::step(w_, dt_, impacts_);
+  if (driven_ >= 0 && w_.ents.driven[driven_] && w_.ents.local[driven_]) dynamics::drive(w_, driven_, controls, dt_, crashes_);
   detector_.detect(w_, contacts_);
   if (decides)
     contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(), [&](const collision::Contact& c) { return !decides(c); }),
@@ -171,6 +182,7 @@ void Simulation::tick() {
   for (const auto& d : injected_detonations_) collision::detonate(w_, d, changes_);
   injected_detonations_.clear();
   for (const auto& im : impacts_) collision::detonate(w_, im.munition, im.point, -1, changes_);
+  for (const auto& c : crashes_) collision::ground_contact(w_, c.entity, c.point, c.speed_mps, changes_);
   if (before_apply) before_apply(w_, changes_);
   world::apply(w_, changes_, applied_);
   log_changes();

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "collision/collision.hpp"
+#include "dynamics/drive.hpp"
 #include "dynamics/dynamics.hpp"
 #include "node/event_log.hpp"
 #include "world/changes.hpp"
@@ -45,6 +46,13 @@ class Simulation {
   //  injected changes, collision::detonate works out its crater and blast into this tick's
   //  changes, applied and logged with them.
   std::function<void(world::World&)> before_step;
+  // The player (player.hpp): runs after the scheduled fires, before dynamics (its fire and switch).
+  std::function<void()> before_dynamics;
+  // The vehicle a player drives (-1: none): dynamics::drive moves it by `controls` instead of its
+  // route; an aircraft meeting the ground becomes a collision (collision/ground.hpp).
+  void set_driven(int e);
+  int driven() const { return driven_; }
+  dynamics::Controls controls;
   std::function<bool(const collision::Contact&)> decides;
   void inject(const world::Changes& c);
   void inject_detonation(const world::DetonationRecord& d);
@@ -75,6 +83,8 @@ class Simulation {
   collision::RespondScratch respond_scratch_;
   std::vector<collision::Contact> contacts_;
   std::vector<dynamics::GroundImpact> impacts_;
+  std::vector<dynamics::Crash> crashes_;
+  int driven_ = -1;
   std::vector<int> fired_;
   world::Changes changes_, injected_;
   std::vector<world::DetonationRecord> injected_detonations_;

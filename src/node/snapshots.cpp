@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "node/cameras.hpp"
 #include "render/renderer.hpp"
 #include "world/pose.hpp"
 
@@ -21,16 +22,6 @@ render::Hud make_hud(const world::World& w, const world::Entities& ents, int d) 
   hud.rounds = ents.rounds[d], hud.fuel_l = ents.fuel_l[d];
   hud.label = ents.id[d] + " " + w.kinds[ents.kind[d]].name;
   return hud;
-}
-
-// The driven vehicle's eye: at the front edge of its model, a little above the hull top, so the
-// view is not blocked by the vehicle itself.
-render::Camera driver_eye(const world::World& w, int d) {
-  const world::Kind& k = w.kinds[w.ents.kind[d]];
-  const world::Model& m = w.models[k.models[0]];
-  const Vec2 f = heading_to_dir(w.ents.heading_deg[d]);
-  const Vec3 front = w.ents.pos[d] + Vec3(f.x(), f.y(), 0) * (static_cast<double>(m.bbox_max.y()) + 0.5);
-  return render::vehicle_eye(front, w.ents.heading_deg[d], w.ents.pitch_deg[d], std::max(1.5, 0.8 * k.height_m));
 }
 
 // The first of this node's vehicles that is alive (not a wreck), else the first wreck; -1: none.
@@ -74,6 +65,7 @@ Snapshots::Snapshots(const SnapshotOptions& o, const world::World& w, double dt,
 Snapshots::~Snapshots() = default;
 
 int Snapshots::driven(const world::World& w) const {
+  if (driven_ >= 0 && driven_ < static_cast<int>(w.ents.size())) return driven_;
   for (size_t e = 0; e < w.ents.size(); ++e)
     if (w.ents.local[e] && w.kinds[w.ents.kind[e]].mobility != world::Mobility::Munition) return static_cast<int>(e);
   return -1;
@@ -156,7 +148,7 @@ void Snapshots::write(const world::World& w, const std::string& name, const Stat
 
 void Snapshots::before_apply(const world::World& w, const world::Changes& c) {
   auto snap = [&](const std::string& kind, int a, const std::string& a_id, const std::string& b_id, const Vec3& pa,
-                  const Vec3& pb) {
+                  const Vec3& pb, Pending more) {
     if (a < 0 || !w.ents.snapshots[a]) return;
     char num[16];
     std::snprintf(num, sizeof num, "%04d", ++counter_);
@@ -164,20 +156,24 @@ void Snapshots::before_apply(const world::World& w, const world::Changes& c) {
     if (!budget(w, 2, {base + "-imminent.png", base + "-result.png"})) return;
     const render::Camera cam = render::look_at_pair(w, pa, pb);
     const State* past = past_state(w.t - kImminentLeadS);
-    write(w, base + "-imminent.png", past, cam.eye, cam.target, past ? past->t : w.t);
-    pending_.push_back({w.t + kResultDelayS, base, cam.eye, cam.target});
+    write(w, base + "-imminent.png", past, cam.eye, cam.target, past ? past->t : w.t, a);
+    more.due_t = w.t + kResultDelayS, more.base = base, more.eye = cam.eye, more.target = cam.target, more.subject = a;
+    pending_.push_back(more);
   };
   const auto& ents = w.ents;
   for (const auto& r : c.collisions) {
     const bool snap_a = ents.snapshots[r.a];
-    const bool snap_b = !r.b_fixed && ents.snapshots[r.b];
+    const bool ground = !r.b_fixed && r.b < 0;
+    const bool snap_b = !r.b_fixed && !ground && ents.snapshots[r.b];
     if (!snap_a && !snap_b) continue;
-    if (!r.b_fixed && w.kinds[ents.kind[r.b]].mobility == world::Mobility::Munition) continue;  // the detonation covers it
+    if (!r.b_fixed && !ground && w.kinds[ents.kind[r.b]].mobility == world::Mobility::Munition) continue;  // the detonation covers it
     if (w.kinds[ents.kind[r.a]].mobility == world::Mobility::Munition) continue;
     const Vec3 pa = world::entity_centre(w, r.a);
-    const Vec3 pb = r.b_fixed ? world::fixed_centre(w, r.b) : world::entity_centre(w, r.b);
+    const Vec3 pb = ground ? r.point : r.b_fixed ? world::fixed_centre(w, r.b) : world::entity_centre(w, r.b);
     const int who = snap_a ? r.a : r.b;
-    snap("collision", who, ents.id[r.a], r.b_fixed ? w.fixed.id[r.b] : ents.id[r.b], pa, pb);
+    Pending more;
+    more.a = r.a, more.b = r.b, more.b_fixed = r.b_fixed, more.b_point = r.point;
+    snap("collision", who, ents.id[r.a], ground ? "ground" : r.b_fixed ? w.fixed.id[r.b] : ents.id[r.b], pa, pb, more);
   }
   for (const auto& d : c.detonations) {
     const int shooter = d.shooter;
@@ -188,8 +184,17 @@ void Snapshots::before_apply(const world::World& w, const world::Changes& c) {
     const Vec3 side(-dir.y() * 20, dir.x() * 20, 0);
     const Vec3 pa = d.target >= 0 ? world::entity_centre(w, d.target) - side : d.point - side;
     const Vec3 pb = d.target >= 0 ? world::entity_centre(w, d.target) + side : d.point + side;
-    snap("detonation", shooter, d.round, d.target >= 0 ? ents.id[d.target] : "ground", pa, pb);
+    snap("detonation", shooter, d.round, d.target >= 0 ? ents.id[d.target] : "ground", pa, pb, Pending{});
   }
+}
+
+// A vehicle that drove on over a fixed object it damaged may still stand on it at the due time:
+// its result frame waits (at most kResultWaitS) until the vehicle has stopped or is clear of it.
+bool Snapshots::result_clear(const world::World& w, const Pending& p) const {
+  if (!p.b_fixed || p.a < 0 || w.t + 1e-9 >= p.due_t + kResultWaitS) return true;
+  const double apart = (world::entity_centre(w, p.a) - world::fixed_centre(w, p.b)).head<2>().norm();
+  const double clear = world::entity_radius(w, p.a) / thesis::kBoundingRadiusFraction + world::fixed_radius(w, p.b);
+  return w.ents.vel[p.a].head<2>().norm() < kStoppedMps || apart > clear;
 }
 
 void Snapshots::after_tick(const world::World& w, const world::Changes& c, const world::Applied& a) {
@@ -202,20 +207,39 @@ void Snapshots::after_tick(const world::World& w, const world::Changes& c, const
   for (const auto& p : a.terrain_patches) r_->terrain_changed(p);
   for (const auto& cr : c.craters) r_->add_crater(cr.point, cr.radius_m, w.t);
   for (size_t i = 0; i < pending_.size();) {
-    if (pending_[i].due_t <= w.t + 1e-9) {
-      write(w, pending_[i].base + "-result.png", nullptr, pending_[i].eye, pending_[i].target, w.t);
+    if (pending_[i].due_t <= w.t + 1e-9 && result_clear(w, pending_[i])) {
+      const Pending& p = pending_[i];
+      render::Camera cam;
+      cam.eye = p.eye, cam.target = p.target;
+      if (p.a >= 0) {  // framed again from where the pair is now
+        const Vec3 pb = p.b_fixed ? world::fixed_centre(w, p.b) : p.b >= 0 ? world::entity_centre(w, p.b) : p.b_point;
+        cam = render::look_at_pair(w, world::entity_centre(w, p.a), pb);
+      }
+      write(w, p.base + "-result.png", nullptr, cam.eye, cam.target, w.t, p.subject);
       pending_.erase(pending_.begin() + static_cast<long>(i));
     } else {
       ++i;
     }
   }
+  if (!start_view_) {  // the driver's view at the start (the thesis's Figure A.1)
+    start_view_ = true;
+    const int d = driven(w);
+    const std::string name = d >= 0 ? "0000-view-" + sanitize(w.ents.id[d]) + "-driver.png" : "";
+    if (d >= 0 && budget(w, 1, {name})) {
+      const auto cam = player_camera(w, w.ents, d, input::CameraMode::Driver);
+      write(w, name, nullptr, cam.eye, cam.target, w.t, d);
+    }
+  }
   if (opt_.every_s > 0 && w.t + 1e-9 >= next_periodic_) {
     bool alive = false;
-    const int d = live_vehicle(w, alive);
+    int d = live_vehicle(w, alive);
+    if (driven_ >= 0 && driven_ < static_cast<int>(w.ents.size()) &&
+        w.ents.state[driven_] + 1 < static_cast<int>(w.kinds[w.ents.kind[driven_]].states.size()))
+      d = driven_, alive = true;  // the player's vehicle
     if (d >= 0) {
       render::Camera cam;
       if (alive) {
-        cam = driver_eye(w, d);
+        cam = player_camera(w, w.ents, d, input::CameraMode::Driver);
       } else {  // every vehicle of this node is a wreck: look at the first one from outside
         const Vec3 c = world::entity_centre(w, d);
         const Vec2 f = heading_to_dir(w.ents.heading_deg[d]);
@@ -240,10 +264,8 @@ void Snapshots::after_tick(const world::World& w, const world::Changes& c, const
   filled_ = std::min(filled_ + 1, ring_.size());
 }
 
-bool Snapshots::present(const world::World& w) {
+bool Snapshots::present(const world::World& w, const render::Camera& cam) {
   const int d = driven(w);
-  render::Camera cam;
-  if (d >= 0) cam = driver_eye(w, d);
   render::SceneView v;
   v.world = &w, v.t = w.t, v.driven = d;
   const render::Hud hud = make_hud(w, w.ents, d);

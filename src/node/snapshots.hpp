@@ -31,12 +31,15 @@
 
 namespace npsnet::render {
 class Renderer;
+struct Camera;
 }
 
 namespace npsnet::node {
 
 inline constexpr double kImminentLeadS = 0.5;  // imminent frame: this long before the contact
 inline constexpr double kResultDelayS = 1.0;   // result frame: this long after
+inline constexpr double kResultWaitS = 1.0;    // ... or up to this much later, until the vehicle is clear
+inline constexpr double kStoppedMps = 0.5;      // a vehicle slower than this has stopped
 inline constexpr int kDefaultMaxFrames = 200;    // snapshot budget per run (--max-snapshots)
 inline constexpr int kDefaultMaxPerMinute = 60;  // per 60 s of scenario time (--max-snapshots-per-minute)
 
@@ -59,8 +62,13 @@ class Snapshots {
   void before_apply(const world::World& w, const world::Changes& c);
   // After apply: effects, terrain patches, due result frames, periodic frames, buffer the state.
   void after_tick(const world::World& w, const world::Changes& c, const world::Applied& a);
-  // The window frame (with --window): the driven vehicle's view. False once the window is closed.
-  bool present(const world::World& w);
+  // The window frame (with --window): `cam`, with the HUD of the driven vehicle. False once the
+  // window is closed.
+  bool present(const world::World& w, const render::Camera& cam);
+  // The player's vehicle (-1: none; the first vehicle of this node then stands in): periodic
+  // frames, the start view and the window's HUD follow it.
+  void set_driven(int e) { driven_ = e; }
+  render::Renderer& renderer() { return *r_; }
   bool pending() const { return !pending_.empty(); }
   int written() const { return written_; }
   int skipped() const { return skipped_; }
@@ -71,15 +79,24 @@ class Snapshots {
     world::Entities ents;
     std::vector<uint8_t> fixed_state;
   };
+  // A result frame to come. Collisions are framed again at their due time from where the pair is
+  // then (the vehicle may have driven on past a stump: both stay in view, side by side).
   struct Pending {
-    double due_t;
+    double due_t = 0;
     std::string base;
-    Vec3 eye, target;
+    Vec3 eye{0, 0, 0}, target{0, 0, 0};
+    int subject = -1;         // the vehicle the snapshot is about (its HUD)
+    int a = -1, b = -1;       // collision: entity a, and b (an entity, a fixed object, or -1: ground)
+    bool b_fixed = false;
+    Vec3 b_point{0, 0, 0};
   };
   static constexpr int kDriven = -2;  // hud_entity: the driven vehicle's HUD
   void write(const world::World& w, const std::string& name, const State* past, const Vec3& eye,
              const Vec3& target, double t, int hud_entity = kDriven, const nlohmann::json& extra = {});
   int driven(const world::World& w) const;
+  bool result_clear(const world::World& w, const Pending& p) const;
+  int driven_ = -1;
+  bool start_view_ = false;
   // The buffered state of scenario time `t` (interpolated), or the oldest one; null when none.
   const State* past_state(double t);
   // Takes `n` frames from the budget at scenario time t, or logs `files` as skipped.

@@ -110,6 +110,11 @@ class GlfwContext final : public GlContext {
   }
   bool is_window() const override { return true; }
   bool should_close() const override { return glfwWindowShouldClose(win_); }
+  void* native_window() const override { return win_; }
+  void wait_events(double timeout_s) override {
+    if (timeout_s > 0) glfwWaitEventsTimeout(timeout_s);
+    else glfwPollEvents();
+  }
 
  private:
   GLFWwindow* win_ = nullptr;

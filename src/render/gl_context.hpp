@@ -14,6 +14,8 @@ class GlContext {
   virtual void present(unsigned fbo, int w, int h) = 0;  // window: blit + swap; off-screen: nothing
   virtual bool is_window() const = 0;
   virtual bool should_close() const { return false; }
+  virtual void* native_window() const { return nullptr; }  // GLFWwindow* of a window context
+  virtual void wait_events(double /*timeout_s*/) {}          // window: handle input until then
   std::string description;              // "OSMesa GL 4.5 (Core Profile) Mesa ... llvmpipe"
 };
 

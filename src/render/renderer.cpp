@@ -559,6 +559,8 @@ int Renderer::height() const { return p_->opt.height; }
 const FrameStats& Renderer::stats() const { return p_->stats; }
 const std::string& Renderer::gl_description() const { return p_->ctx->description; }
 bool Renderer::window_should_close() const { return p_->ctx->should_close(); }
+void* Renderer::native_window() const { return p_->ctx->native_window(); }
+void Renderer::wait_events(double timeout_s) { p_->ctx->wait_events(timeout_s); }
 const TerrainMesh& Renderer::terrain_mesh() const { return *p_->terrain; }
 
 Camera look_at_pair(const world::World& w, const Vec3& a, const Vec3& b) {

@@ -94,6 +94,8 @@ class Renderer {
   const FrameStats& stats() const;
   const std::string& gl_description() const;  // context kind, GL version, renderer
   bool window_should_close() const;           // the user closed the window
+  void* native_window() const;                // the GLFWwindow* with RenderOptions::window, else null
+  void wait_events(double timeout_s);         // window: handle input events for up to timeout_s
   const TerrainMesh& terrain_mesh() const;    // for tests
 
  private:

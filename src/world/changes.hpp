@@ -38,6 +38,7 @@ struct Crater {
 };
 
 // A collision decided this tick (one per contact episode).
+// b = -1 (and not b_fixed): the ground itself (an aircraft meeting the terrain, dynamics/drive.hpp).
 struct CollisionRecord {
   int a = -1, b = -1;
   bool b_fixed = false;

@@ -45,6 +45,36 @@ double default_sensor_range_m(Mobility m) {
     default: return 0;
   }
 }
+
+// Driving data (dynamics/drive.hpp): vehicle handling, not thesis constants. A kind that does not
+// give a value takes its mobility's default (ground: a tracked vehicle; ship: a patrol boat; air:
+// a helicopter-like craft).
+struct Handling {
+  double accel, brake, turn_radius, climb;
+};
+Handling default_handling(Mobility m) {
+  switch (m) {
+    case Mobility::Ground: return {1.5, 4.0, 8.0, 0.0};
+    case Mobility::Ship: return {0.3, 0.3, 150.0, 0.0};
+    case Mobility::Air: return {4.0, 4.0, 100.0, 10.0};
+    default: return {0, 0, 0, 0};
+  }
+}
+
+void read_handling(TomlReader& r, const toml::table& t, const std::string& p, int tl, Kind& k) {
+  const Handling d = default_handling(k.mobility);
+  auto positive = [&](const char* key, double def) {
+    const double v = r.number(t, key, p + key, false, tl).value_or(def);
+    if (!(v >= 0)) r.problem(t.get(key), p + key, "must not be negative");
+    return v;
+  };
+  k.fuel_lph = positive("fuel_lph", 0);
+  k.accel_mps2 = positive("accel_mps2", d.accel);
+  k.brake_mps2 = positive("brake_mps2", d.brake);
+  k.turn_radius_m = positive("turn_radius_m", d.turn_radius);
+  k.climb_mps = positive("climb_mps", d.climb);
+  k.munition = r.string(t, "munition", p + "munition", false, tl).value_or("");
+}
 }  // namespace
 
 KindTable KindTable::load(const std::filesystem::path& file, ModelLibrary& models) {
@@ -65,7 +95,8 @@ KindTable KindTable::load(const std::filesystem::path& file, ModelLibrary& model
     const std::string p = name + ".";
     r.unknown_keys(*t, p, {"mobility", "mass_kg", "radius_m", "states", "models", "explosive", "max_speed_kmh",
                            "dis_type", "blast_radius_m", "crater_radius_m", "crater_depth_m", "rounds", "fuel_l", "resistance",
-                           "tiers", "sensor_range_m", "guided"});
+                           "tiers", "sensor_range_m", "guided", "munition", "fuel_lph", "accel_mps2", "brake_mps2",
+                           "turn_radius_m", "climb_mps"});
     Kind k;
     k.name = name;
     if (auto m = r.string(*t, "mobility", p + "mobility", true, tl)) {
@@ -139,10 +170,17 @@ KindTable KindTable::load(const std::filesystem::path& file, ModelLibrary& model
           k.top_tier = std::max(k.top_tier, *v);
       }
     }
+    read_handling(r, *t, p, tl, k);
     if (k.mobility == Mobility::Munition && k.max_speed_kmh <= 0)
       r.problem(tl, p + "max_speed_kmh", "a munition needs its speed");
     out.kinds_.push_back(std::move(k));
   }
+  for (const auto& k : out.kinds_)  // a vehicle's munition must be a munition kind of this file
+    if (!k.munition.empty()) {
+      const int m = out.find(k.munition);
+      if (m < 0 || out.kinds_[static_cast<size_t>(m)].mobility != Mobility::Munition)
+        r.problem(root[k.name].as_table()->get("munition"), k.name + ".munition", "'" + k.munition + "' is not a munition kind");
+    }
   if (out.kinds_.empty() && problems.empty()) problems.push_back({fname, 0, "kinds", "no kinds defined"});
   if (!problems.empty()) throw InputError(std::move(problems));
   return out;

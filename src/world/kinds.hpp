@@ -44,6 +44,13 @@ struct Kind {
   double fuel_l = 0;
   double sensor_range_m = 0;     // area of interest (--aoi): default ground 5 km, ship 10 km, air 20 km
   double height_m = 0;           // top of the model above ground (from the intact model)
+  // vehicles driven by a player (dynamics/drive.hpp); defaults by mobility when not given
+  std::string munition;          // the round it fires ("" = none)
+  double fuel_lph = 0;           // litres per hour at top speed, burnt in proportion to speed
+  double accel_mps2 = 0;         // at full throttle (m/s^2)
+  double brake_mps2 = 0;         // at full brake (m/s^2)
+  double turn_radius_m = 0;      // tightest turn at full steer (ground, ship), m
+  double climb_mps = 0;          // aircraft: vertical speed at full climb or dive, m/s
   // fixed objects: momentum scale they withstand (Figure 8 constants x resistance)
   double resistance = 1;
   // collision shape tiers (`tiers` in kinds.toml): the highest declared; Auto = not declared

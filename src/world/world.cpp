@@ -41,6 +41,7 @@ int Entities::add(std::string id_, int kind_, const Vec3& p, float heading, floa
   loop_route.push_back(0);
   flee_until.push_back(-1);
   calm_until.push_back(-1);
+  driven.push_back(0);
   return static_cast<int>(id.size() - 1);
 }
 

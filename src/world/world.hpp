@@ -100,6 +100,7 @@ struct Entities {
   std::vector<uint8_t> loop_route;           // 1 = start over after the last waypoint
   std::vector<float> flee_until;             // autonomous: fleeing until this time (s)
   std::vector<float> calm_until;             // autonomous: no new reaction before this time (s)
+  std::vector<uint8_t> driven;               // 1 = a player drives it (dynamics/drive.hpp), not its route
   size_t size() const { return id.size(); }
   int add(std::string id_, int kind_, const Vec3& p, float heading, float radius);
   bool valid() const;  // invariant: every array has size() entries

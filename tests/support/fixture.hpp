@@ -35,6 +35,7 @@ inline int add_vehicle(world::World& w, const std::string& id, const std::string
   w.ents.cruise_mps[e] = static_cast<float>(speed_mps);
   w.ents.max_mps[e] = static_cast<float>(std::max(speed_mps, kmh2mps(w.kinds[k].max_speed_kmh)));
   w.ents.rounds[e] = w.kinds[k].rounds;
+  w.ents.fuel_l[e] = static_cast<float>(w.kinds[k].fuel_l);  // a full tank, as build_world gives
   return e;
 }
 
