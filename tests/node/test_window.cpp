@@ -1,0 +1,145 @@
+// The player's node in a real GLFW window (under Xvfb in ctest): xdotool presses and holds keys
+// in the window of `npsnet run --window`. Held W drives tank p1 forward, held A turns it left
+// (north) and it runs into the building wall1 north-east of it: the event log holds the
+// collision, the recorded input the key presses and releases as actions, stderr the node's
+// input-to-photon lines. The window is captured with ImageMagick's `import` (kept in the temp
+// folder: window-capture.png). Also measured from outside: from just before `xdotool keydown w`
+// to the swap of the first frame that shows its effect (both CLOCK_MONOTONIC).
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <fcntl.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "support/fixture.hpp"
+
+extern char** environ;
+
+using namespace npsnet;
+using nlohmann::json;
+
+namespace {
+double steady_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+int sh(const std::string& cmd) { return std::system(cmd.c_str()); }
+std::string slurp(const std::filesystem::path& f) {
+  std::ifstream in(f);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+std::string capture(const std::string& cmd) {
+  std::string out;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return out;
+  char buf[256];
+  while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
+  pclose(p);
+  return out;
+}
+}  // namespace
+
+TEST(Window, HeldKeysDriveTurnAndCollide) {
+  if (!std::getenv("DISPLAY")) GTEST_SKIP() << "no display (ctest runs this under xvfb-run)";
+  ASSERT_EQ(sh("command -v xdotool >/dev/null && command -v import >/dev/null"), 0)
+      << "xdotool and ImageMagick are needed (scripts/install-deps.sh)";
+  const auto dir = std::filesystem::temp_directory_path() / "npsnet-tests" / "window";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string events = (dir / "events.jsonl").string(), rec = (dir / "input.jsonl").string(),
+                    out = (dir / "out.txt").string();
+  const std::string bin = std::string(NPSNET_BINARY_DIR) + "/npsnet";
+  std::vector<std::string> args = {bin, "run", "--window", "--scenario", test::source("tests/node/data/window.toml").string(),
+                                   "--seconds", "11", "--events", events, "--snapshots", (dir / "snap").string(),
+                                   "--record-input", rec};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, bin.c_str(), &fa, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&fa);
+  // the window, then keys: W held, A held for 2.2 s while W is held, releases
+  const std::string wid = capture("timeout 20 xdotool search --sync --onlyvisible --name '^NPSNET$' | head -1");
+  ASSERT_FALSE(wid.empty()) << slurp(out);
+  const std::string w = wid.substr(0, wid.find('\n'));
+  sh("xdotool mousemove --window " + w + " 480 270");
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  const double before_press = steady_s();
+  sh("xdotool keydown w");
+  std::this_thread::sleep_for(std::chrono::milliseconds(2000));
+  sh("xdotool keydown a");
+  std::this_thread::sleep_for(std::chrono::milliseconds(2200));
+  sh("xdotool keyup a");
+  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  const auto shot = dir / "window-capture.png";
+  sh("import -window root " + shot.string());
+  sh("xdotool keyup w");
+  int status = -1;
+  for (int i = 0; i < 300 && waitpid(pid, &status, WNOHANG) == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  if (waitpid(pid, &status, WNOHANG) == 0) {
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+    FAIL() << "npsnet --window did not end: " << slurp(out);
+  }
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << slurp(out);
+  const std::string text = slurp(out);
+
+  // the keys arrived as actions, in order: throttle 1, steer -1, steer 0 (and throttle 0 at the end)
+  std::vector<json> acts;
+  std::ifstream ri(rec);
+  for (std::string line; std::getline(ri, line);) acts.push_back(json::parse(line));
+  ASSERT_GE(acts.size(), 3u) << slurp(rec);
+  EXPECT_EQ(acts[0]["action"], "throttle");
+  EXPECT_EQ(acts[0]["value"], 1.0);
+  EXPECT_EQ(acts[1]["action"], "steer");
+  EXPECT_EQ(acts[1]["value"], -1.0);
+  EXPECT_EQ(acts[2]["action"], "steer");
+  EXPECT_EQ(acts[2]["value"], 0.0);
+  const double held_s = acts[2]["t"].get<double>() - acts[1]["t"].get<double>();
+  EXPECT_NEAR(held_s, 2.2, 0.35);  // scenario time follows the wall clock in a window
+
+  // it moved, turned and collided: the building is north-east, off its first heading (east)
+  const json* hit = nullptr;
+  std::vector<json> ev;
+  std::ifstream ei(events);
+  for (std::string line; std::getline(ei, line);) ev.push_back(json::parse(line));
+  for (const auto& e : ev)
+    if (e["event"] == "collision" && e["a"] == "p1" && e["b"] == "wall1") hit = &e;
+  ASSERT_TRUE(hit) << slurp(events) << text;
+  EXPECT_GT((*hit)["point"][1].get<double>(), 125.0);  // 25+ m north of where it started: it turned
+  EXPECT_GT((*hit)["t"].get<double>(), acts[1]["t"].get<double>());
+  ASSERT_FALSE(ev.empty());
+  EXPECT_EQ(ev[0]["event"], "drive");
+
+  // input-to-photon, from the node (GLFW key event -> swap) and from outside (xdotool -> swap)
+  const auto at = text.find("npsnet: input-to-photon: ");
+  ASSERT_NE(at, std::string::npos) << text;
+  double ms = 0, ev_s = 0, swap_s = 0;
+  ASSERT_EQ(std::sscanf(text.c_str() + at, "npsnet: input-to-photon: %lf ms (event %lf s, swapped %lf s", &ms, &ev_s, &swap_s), 3);
+  EXPECT_GE(ev_s, before_press);
+  EXPECT_GT(swap_s, ev_s);
+  const double outside_ms = 1000 * (swap_s - before_press);
+  std::printf("input-to-photon: node %.1f ms (GLFW key event -> swap), outside %.1f ms (before xdotool keydown -> swap)\n", ms,
+              outside_ms);
+  RecordProperty("input_to_photon_ms", std::to_string(outside_ms));
+  EXPECT_LT(outside_ms, 1000.0);  // the frame after the next tick, not seconds later
+
+  // the captured screen is the window's picture, not a black screen
+  ASSERT_TRUE(std::filesystem::exists(shot));
+  const double mean = std::atof(capture("convert " + shot.string() + " -format '%[fx:mean]' info:").c_str());
+  EXPECT_GT(mean, 0.1);
+}
