@@ -188,15 +188,6 @@ void Snapshots::before_apply(const world::World& w, const world::Changes& c) {
   }
 }
 
-// A vehicle that drove on over a fixed object it damaged may still stand on it at the due time:
-// its result frame waits (at most kResultWaitS) until the vehicle has stopped or is clear of it.
-bool Snapshots::result_clear(const world::World& w, const Pending& p) const {
-  if (!p.b_fixed || p.a < 0 || w.t + 1e-9 >= p.due_t + kResultWaitS) return true;
-  const double apart = (world::entity_centre(w, p.a) - world::fixed_centre(w, p.b)).head<2>().norm();
-  const double clear = world::entity_radius(w, p.a) / thesis::kBoundingRadiusFraction + world::fixed_radius(w, p.b);
-  return w.ents.vel[p.a].head<2>().norm() < kStoppedMps || apart > clear;
-}
-
 void Snapshots::after_tick(const world::World& w, const world::Changes& c, const world::Applied& a) {
   for (const auto& d : c.detonations) r_->add_explosion(d.point, w.t, d.target >= 0 ? 1.5f : 1.0f);
   for (int e : a.killed) {
@@ -207,12 +198,20 @@ void Snapshots::after_tick(const world::World& w, const world::Changes& c, const
   for (const auto& p : a.terrain_patches) r_->terrain_changed(p);
   for (const auto& cr : c.craters) r_->add_crater(cr.point, cr.radius_m, w.t);
   for (size_t i = 0; i < pending_.size();) {
-    if (pending_[i].due_t <= w.t + 1e-9 && result_clear(w, pending_[i])) {
+    if (pending_[i].due_t <= w.t + 1e-9) {
       const Pending& p = pending_[i];
       render::Camera cam;
       cam.eye = p.eye, cam.target = p.target;
-      if (p.a >= 0) {  // framed again from where the pair is now
-        const Vec3 pb = p.b_fixed ? world::fixed_centre(w, p.b) : p.b >= 0 ? world::entity_centre(w, p.b) : p.b_point;
+      if (p.a >= 0 && p.b_fixed) {  // the object it changed, close, from the side and above
+        const Vec3 o = w.fixed.pos[p.b];
+        const Vec2 f = heading_to_dir(w.ents.heading_deg[p.a]);
+        const Vec2 side(-f.y(), f.x());
+        const double d = std::max(14.0, 2.5 * world::fixed_radius(w, p.b));
+        cam.target = o + Vec3(0, 0, std::min(2.0, 0.3 * world::fixed_radius(w, p.b)));
+        cam.eye = o + Vec3(side.x(), side.y(), 0) * d - Vec3(f.x(), f.y(), 0) * (0.5 * d);
+        cam.eye.z() = std::max(o.z(), w.terrain.height(cam.eye.x(), cam.eye.y())) + 0.8 * d;
+      } else if (p.a >= 0) {  // framed again from where the pair is now
+        const Vec3 pb = p.b >= 0 ? world::entity_centre(w, p.b) : p.b_point;
         cam = render::look_at_pair(w, world::entity_centre(w, p.a), pb);
       }
       write(w, p.base + "-result.png", nullptr, cam.eye, cam.target, w.t, p.subject);

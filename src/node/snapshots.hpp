@@ -38,8 +38,6 @@ namespace npsnet::node {
 
 inline constexpr double kImminentLeadS = 0.5;  // imminent frame: this long before the contact
 inline constexpr double kResultDelayS = 1.0;   // result frame: this long after
-inline constexpr double kResultWaitS = 1.0;    // ... or up to this much later, until the vehicle is clear
-inline constexpr double kStoppedMps = 0.5;      // a vehicle slower than this has stopped
 inline constexpr int kDefaultMaxFrames = 200;    // snapshot budget per run (--max-snapshots)
 inline constexpr int kDefaultMaxPerMinute = 60;  // per 60 s of scenario time (--max-snapshots-per-minute)
 
@@ -94,7 +92,6 @@ class Snapshots {
   void write(const world::World& w, const std::string& name, const State* past, const Vec3& eye,
              const Vec3& target, double t, int hud_entity = kDriven, const nlohmann::json& extra = {});
   int driven(const world::World& w) const;
-  bool result_clear(const world::World& w, const Pending& p) const;
   int driven_ = -1;
   bool start_view_ = false;
   // The buffered state of scenario time `t` (interpolated), or the oldest one; null when none.

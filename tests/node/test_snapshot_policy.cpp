@@ -75,10 +75,10 @@ TEST(SnapshotPolicy, BudgetPerRunSkipsFramesButTheEventLogStaysComplete) {
   const NodeRun cut = run_into("budget-4", "--max-snapshots 4");
   ASSERT_EQ(full.out.rc, 0) << full.out.text;
   ASSERT_EQ(cut.out.rc, 0) << cut.out.text;
-  EXPECT_EQ(full.of("snapshot").size(), 26u);
+  EXPECT_EQ(full.of("snapshot").size(), 27u);  // 13 pairs + the start view 0000-view-player1-driver.png
   EXPECT_TRUE(full.of("snapshot_skipped").empty());
-  EXPECT_EQ(cut.of("snapshot").size(), 4u);
-  EXPECT_EQ(cut.of("snapshot_skipped").size(), 22u);
+  EXPECT_EQ(cut.of("snapshot").size(), 3u);  // the start view and one pair (a second pair would make 5)
+  EXPECT_EQ(cut.of("snapshot_skipped").size(), 24u);
   for (const auto& s : cut.of("snapshot_skipped")) {
     EXPECT_NE(s["reason"].get<std::string>().find("at most 4 frames per run"), std::string::npos);
     EXPECT_FALSE(fs::exists(s["file"].get<std::string>())) << s;
@@ -86,12 +86,12 @@ TEST(SnapshotPolicy, BudgetPerRunSkipsFramesButTheEventLogStaysComplete) {
   for (const auto* type : {"collision", "damage", "fire", "detonation", "crater"})
     EXPECT_EQ(cut.of(type), full.of(type)) << type;  // same simulation, every event still there
   EXPECT_NE(cut.out.text.find("warning: t = "), std::string::npos) << cut.out.text;
-  EXPECT_NE(cut.out.text.find("22 snapshot frame(s) skipped"), std::string::npos) << cut.out.text;
+  EXPECT_NE(cut.out.text.find("24 snapshot frame(s) skipped"), std::string::npos) << cut.out.text;
 }
 
 TEST(SnapshotPolicy, BudgetPerMinuteOfScenarioTime) {
-  // 90 s with a frame every second (t = 0 ... 89): 90 periodic frames + 26 of the cases, at
-  // most 20 a minute.
+  // 90 s with a frame every second (t = 0 ... 89): 90 periodic frames + 26 of the cases + the
+  // start view, at most 20 a minute.
   const NodeRun r = run_into("budget-minute", "--seconds 90 --snapshot-every 1 --max-snapshots-per-minute 20");
   ASSERT_EQ(r.out.rc, 0) << r.out.text;
   std::vector<double> taken;  // when each frame was taken from the budget (a pair: at its event)
@@ -106,7 +106,7 @@ TEST(SnapshotPolicy, BudgetPerMinuteOfScenarioTime) {
   }
   EXPECT_GE(taken.size(), 30u);  // the second minute has its own 20
   EXPECT_FALSE(r.of("snapshot_skipped").empty());
-  EXPECT_EQ(taken.size() + r.of("snapshot_skipped").size(), 26u + 90u);
+  EXPECT_EQ(taken.size() + r.of("snapshot_skipped").size(), 27u + 90u);
 }
 
 TEST(SnapshotPolicy, PeriodicFramesNeverFromInsideAWreck) {
