@@ -127,10 +127,10 @@ TEST(BadInput, FullDeviceIsAnErrorThatSaysSo) {
 TEST(BadInput, SnapshotThatCannotBeWrittenMidRunStopsTheRunAndSaysSo) {
   // A folder where the third case's result PNG should go: that rename fails at t = 7 s.
   const auto dir = fresh_dir("png-fails");
-  fs::create_directories(dir / "0003-detonation-m517-ground-result.png" / "in-the-way");
+  fs::create_directories(dir / "0003-detonation-m518-ground-result.png" / "in-the-way");
   const auto o = test::npsnet_cli("run --quiet --snapshots " + dir.string() + " --size 160x90");
   EXPECT_EQ(o.rc, 1) << o.text;
-  EXPECT_NE(o.text.find("0003-detonation-m517-ground-result.png: cannot write the snapshot"), std::string::npos) << o.text;
+  EXPECT_NE(o.text.find("0003-detonation-m518-ground-result.png: cannot write the snapshot"), std::string::npos) << o.text;
   const auto lines = json_lines(dir / "events.jsonl");
   ASSERT_FALSE(lines.empty());
   EXPECT_EQ(lines.back()["event"], "error");  // the log itself says where it ends, and why
