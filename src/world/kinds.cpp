@@ -1,8 +1,10 @@
 #include "world/kinds.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/constants.hpp"
+#include "world/limits.hpp"
 #include "world/toml_util.hpp"
 
 namespace npsnet::world {
@@ -107,7 +109,7 @@ KindTable KindTable::load(const std::filesystem::path& file, ModelLibrary& model
         if (*m == s) k.mobility = v, found = true;
       if (!found) r.problem(t->get("mobility"), p + "mobility", "must be fixed, ground, ship, air or munition (got '" + *m + "')");
     }
-    if (auto v = r.number(*t, "mass_kg", p + "mass_kg", true, tl)) {
+    if (auto v = r.number_in(*t, "mass_kg", p + "mass_kg", true, tl, -kMaxMassKg, kMaxMassKg, "kg")) {
       if (*v <= 0) r.problem(t->get("mass_kg"), p + "mass_kg", "must be positive (got " + std::to_string(*v) + ")");
       k.mass_kg = *v;
     }
@@ -128,7 +130,7 @@ KindTable KindTable::load(const std::filesystem::path& file, ModelLibrary& model
         }
       }
     }
-    if (auto v = r.number(*t, "radius_m", p + "radius_m", false, tl)) {
+    if (auto v = r.number_in(*t, "radius_m", p + "radius_m", false, tl, -kMaxSizeM, kMaxSizeM, "m")) {
       if (*v <= 0) r.problem(t->get("radius_m"), p + "radius_m", "must be positive");
       k.radius_m = *v;
     } else if (!k.models.empty()) {
@@ -143,22 +145,30 @@ KindTable KindTable::load(const std::filesystem::path& file, ModelLibrary& model
       k.centre_by_state.push_back(m.centre);
     }
     k.explosive = r.boolean(*t, "explosive", p + "explosive").value_or(false);
-    k.max_speed_kmh = r.number(*t, "max_speed_kmh", p + "max_speed_kmh", false, tl).value_or(table2_limit_kmh(k.mobility));
+    k.max_speed_kmh = r.number_in(*t, "max_speed_kmh", p + "max_speed_kmh", false, tl, -kMaxSpeedKmh, kMaxSpeedKmh, "km/h")
+                          .value_or(table2_limit_kmh(k.mobility));
     if (k.max_speed_kmh < 0) r.problem(t->get("max_speed_kmh"), p + "max_speed_kmh", "must not be negative");
     if (auto d = r.numbers(*t, "dis_type", p + "dis_type", 7, 7, true, tl)) {
       const auto& v = *d;
+      for (size_t i = 0; i < 7; ++i) {
+        const double hi = i == 2 ? 65535 : 255;  // country is 16 bits, the others 8
+        if (v[i] < 0 || v[i] > hi || v[i] != std::floor(v[i])) {
+          r.problem(t->get("dis_type"), p + "dis_type", "field " + std::to_string(i + 1) + " " + range_message(0, hi, "", v[i]).insert(8, "an integer "));
+          break;
+        }
+      }
       k.dis = {uint8_t(v[0]), uint8_t(v[1]), uint16_t(v[2]), uint8_t(v[3]), uint8_t(v[4]), uint8_t(v[5]), uint8_t(v[6])};
     }
     k.guided = r.boolean(*t, "guided", p + "guided").value_or(false);
     if (k.guided && k.mobility != Mobility::Munition) r.problem(t->get("guided"), p + "guided", "only a munition is guided");
-    k.blast_radius_m = r.number(*t, "blast_radius_m", p + "blast_radius_m", false, tl).value_or(0);
-    k.crater_radius_m = r.number(*t, "crater_radius_m", p + "crater_radius_m", false, tl).value_or(0);
-    k.crater_depth_m = r.number(*t, "crater_depth_m", p + "crater_depth_m", false, tl).value_or(0);
-    k.rounds = static_cast<int>(r.number(*t, "rounds", p + "rounds", false, tl).value_or(0));
-    k.fuel_l = r.number(*t, "fuel_l", p + "fuel_l", false, tl).value_or(0);
-    k.sensor_range_m = r.number(*t, "sensor_range_m", p + "sensor_range_m", false, tl).value_or(default_sensor_range_m(k.mobility));
+    k.blast_radius_m = r.number_in(*t, "blast_radius_m", p + "blast_radius_m", false, tl, 0, kMaxSizeM, "m").value_or(0);
+    k.crater_radius_m = r.number_in(*t, "crater_radius_m", p + "crater_radius_m", false, tl, 0, kMaxSizeM, "m").value_or(0);
+    k.crater_depth_m = r.number_in(*t, "crater_depth_m", p + "crater_depth_m", false, tl, 0, kMaxSizeM, "m").value_or(0);
+    k.rounds = static_cast<int>(r.number_in(*t, "rounds", p + "rounds", false, tl, 0, kMaxCount, "").value_or(0));
+    k.fuel_l = r.number_in(*t, "fuel_l", p + "fuel_l", false, tl, 0, kMaxCount, "l").value_or(0);
+    k.sensor_range_m = r.number_in(*t, "sensor_range_m", p + "sensor_range_m", false, tl, -1e7, 1e7, "m").value_or(default_sensor_range_m(k.mobility));
     if (!(k.sensor_range_m >= 0)) r.problem(t->get("sensor_range_m"), p + "sensor_range_m", "must not be negative");
-    k.resistance = r.number(*t, "resistance", p + "resistance", false, tl).value_or(1.0);
+    k.resistance = r.number_in(*t, "resistance", p + "resistance", false, tl, -kMaxCount, kMaxCount, "").value_or(1.0);
     if (k.resistance <= 0) r.problem(t->get("resistance"), p + "resistance", "must be positive");
     if (auto tiers = r.strings(*t, "tiers", p + "tiers", false, tl)) {
       // Collision shape tiers (issue 6; collision/collision.hpp): the highest one listed.

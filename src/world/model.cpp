@@ -2,9 +2,15 @@
 
 #include <tiny_obj_loader.h>
 
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <regex>
+#include <sstream>
 
 #include "world/error.hpp"
+#include "world/limits.hpp"
+#include "world/toml_util.hpp"
 
 namespace npsnet::world {
 namespace {
@@ -31,11 +37,44 @@ Vec3f newell_normal(const Model& m, const Face& f) {
   return len > 0 ? Vec3f(n / len) : Vec3f(0, 0, 0);  // zero: degenerate face (zero area)
 }
 
+// tinyobjloader reads `v nan 1 0` or `v abc 1 0` without complaint (abc as 0): every vertex
+// line is checked here first, with its line number: 3 to 6 numbers (x y z [w] or x y z r g b),
+// each finite and the coordinates within kMaxSizeM.
+void check_vertex_lines(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::vector<Problem> problems;
+  for (int ln = 1; std::getline(in, line); ++ln) {
+    if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t')) continue;
+    std::istringstream ss(line.substr(2));
+    std::vector<std::string> tok;
+    for (std::string t; ss >> t;) tok.push_back(t);
+    if (tok.size() < 3 || tok.size() > 6) {
+      problems.push_back({file.string(), ln, "v", "a vertex needs x y z (got " + std::to_string(tok.size()) + " values)"});
+      continue;
+    }
+    for (size_t i = 0; i < tok.size(); ++i) {
+      char* end = nullptr;
+      const double v = std::strtod(tok[i].c_str(), &end);
+      if (end == tok[i].c_str() || *end != '\0' || !std::isfinite(v)) {
+        problems.push_back({file.string(), ln, "v", "'" + tok[i] + "' is not a finite number"});
+        break;
+      }
+      if (i < 3 && std::abs(v) > kMaxSizeM) {
+        problems.push_back({file.string(), ln, "v", "coordinate " + range_message(-kMaxSizeM, kMaxSizeM, "m", v)});
+        break;
+      }
+    }
+  }
+  if (!problems.empty()) throw InputError(std::move(problems));
+}
+
 }  // namespace
 
 Model load_obj(const std::filesystem::path& file) {
   const std::string fname = file.string();
   if (!std::filesystem::exists(file)) throw InputError(fname, 0, "model", "file not found");
+  check_vertex_lines(file);
   tinyobj::ObjReaderConfig cfg;
   cfg.triangulate = false;  // Haines' test works on the polygon as modelled
   cfg.mtl_search_path = file.parent_path().string();

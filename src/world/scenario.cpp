@@ -41,6 +41,7 @@ Scenario load_scenario(const std::filesystem::path& file) {
                           "collision_tier"});
   if (auto v = r.number(root, "duration_s", "duration_s", false, 0)) {
     if (*v <= 0) r.problem(root.get("duration_s"), "duration_s", "must be positive");
+    else if (*v > kMaxDurationS) r.problem(root.get("duration_s"), "duration_s", range_message(0, kMaxDurationS, "s", *v));
     s.duration_s = *v;
   }
   if (auto m = r.string(root, "collision_method", "collision_method", false, 0)) {
@@ -77,9 +78,13 @@ Scenario load_scenario(const std::filesystem::path& file) {
       const auto& v = *g;
       if (std::abs(v[0]) > 90 || std::abs(v[1]) > 180)
         r.problem(w->get("origin_geodetic"), "world.origin_geodetic", "latitude must be within +-90 and longitude +-180 degrees");
+      if (v.size() > 2 && std::abs(v[2]) > kMaxHeightM)
+        r.problem(w->get("origin_geodetic"), "world.origin_geodetic", "height " + range_message(-kMaxHeightM, kMaxHeightM, "m", v[2]));
       s.origin = {v[0], v[1], v.size() > 2 ? v[2] : 0.0};
+      s.origin_line = r.line(w->get("origin_geodetic"));
     }
-    if (auto l = r.number(*w, "water_level_m", "world.water_level_m", false, wl)) s.water_level_m = *l;
+    if (auto l = r.number_in(*w, "water_level_m", "world.water_level_m", false, wl, -kMaxHeightM, kMaxHeightM, "m"))
+      s.water_level_m = *l;
   }
   std::set<std::string> ids;
   auto unique = [&](const toml::node* n, const std::string& field, const std::string& id) {
@@ -109,11 +114,12 @@ Scenario load_scenario(const std::filesystem::path& file) {
       if (auto pos = r.numbers(*t, "position_m", p + "position_m", 2, 3, true, tl)) {
         v.pos = {(*pos)[0], (*pos)[1], pos->size() > 2 ? (*pos)[2] : 0.0};
         v.has_z = pos->size() > 2;
+        if (std::abs(v.pos.z()) > kMaxHeightM)
+          r.problem(t->get("position_m"), p + "position_m", "z " + range_message(-kMaxHeightM, kMaxHeightM, "m", v.pos.z()));
       }
-      v.heading_deg = r.number(*t, "heading_deg", p + "heading_deg", false, tl).value_or(0);
-      v.speed_kmh = r.number(*t, "speed_kmh", p + "speed_kmh", false, tl).value_or(0);
-      if (v.speed_kmh < 0) r.problem(t->get("speed_kmh"), p + "speed_kmh", "must not be negative");
-      v.max_speed_kmh = r.number(*t, "max_speed_kmh", p + "max_speed_kmh", false, tl);
+      v.heading_deg = r.number_in(*t, "heading_deg", p + "heading_deg", false, tl, -kMaxHeadingDeg, kMaxHeadingDeg, "deg").value_or(0);
+      v.speed_kmh = r.number_in(*t, "speed_kmh", p + "speed_kmh", false, tl, 0, kMaxSpeedKmh, "km/h").value_or(0);
+      v.max_speed_kmh = r.number_in(*t, "max_speed_kmh", p + "max_speed_kmh", false, tl, 0, kMaxSpeedKmh, "km/h");
       if (v.max_speed_kmh && *v.max_speed_kmh <= 0) r.problem(t->get("max_speed_kmh"), p + "max_speed_kmh", "must be positive");
       if (const toml::node* wn = t->get("waypoints_m")) {
         const toml::array* wa = wn->as_array();
@@ -161,7 +167,7 @@ Scenario load_scenario(const std::filesystem::path& file) {
       }
       f.kind = r.string(*t, "kind", p + "kind", true, tl).value_or("");
       if (auto pos = r.numbers(*t, "position_m", p + "position_m", 2, 2, true, tl)) f.pos = {(*pos)[0], (*pos)[1]};
-      f.heading_deg = r.number(*t, "heading_deg", p + "heading_deg", false, tl).value_or(0);
+      f.heading_deg = r.number_in(*t, "heading_deg", p + "heading_deg", false, tl, -kMaxHeadingDeg, kMaxHeadingDeg, "deg").value_or(0);
       s.fixed.push_back(std::move(f));
     }
   }
@@ -176,8 +182,7 @@ Scenario load_scenario(const std::filesystem::path& file) {
       r.unknown_keys(*t, p, {"t_s", "shooter", "munition", "target_m", "target"});
       FireSpec f;
       f.line = tl;
-      f.t_s = r.number(*t, "t_s", p + "t_s", true, tl).value_or(0);
-      if (f.t_s < 0) r.problem(t->get("t_s"), p + "t_s", "must not be negative");
+      f.t_s = r.number_in(*t, "t_s", p + "t_s", true, tl, 0, kMaxDurationS, "s").value_or(0);
       f.shooter = r.string(*t, "shooter", p + "shooter", true, tl).value_or("");
       f.munition = r.string(*t, "munition", p + "munition", true, tl).value_or("");
       f.target = r.string(*t, "target", p + "target", false, tl).value_or("");
@@ -193,7 +198,10 @@ Scenario load_scenario(const std::filesystem::path& file) {
       if (*n < 0 || *n > 1e6 || *n != std::floor(*n)) r.problem(b->get("vehicles"), "background.vehicles", "must be an integer 0-1000000");
       else s.background_vehicles = static_cast<int>(*n);
     }
-    if (auto n = r.number(*b, "seed", "background.seed", false, bl)) s.background_seed = static_cast<uint64_t>(std::abs(*n));
+    if (auto n = r.number_in(*b, "seed", "background.seed", false, bl, 0, 9007199254740992.0)) {
+      if (*n != std::floor(*n)) r.problem(b->get("seed"), "background.seed", "must be an integer");
+      s.background_seed = static_cast<uint64_t>(*n);
+    }
     if (auto e = r.numbers(*b, "exclude_m", "background.exclude_m", 4, 4, false, bl))
       s.background_exclude = std::make_pair(Vec2((*e)[0], (*e)[1]), Vec2((*e)[2], (*e)[3]));
   }
@@ -252,6 +260,9 @@ void load_objects_csv(const std::filesystem::path& file, const KindTable& kinds,
       v[c - 2] = std::strtod(cols[c].c_str(), &end);
       if (end == cols[c].c_str() || *end != '\0' || !std::isfinite(v[c - 2])) {
         problems.push_back({fname, ln, names[c - 2], "'" + cols[c] + "' is not a finite number"});
+        ok = false;
+      } else if (c == 4 && std::abs(v[2]) > kMaxHeadingDeg) {
+        problems.push_back({fname, ln, names[2], range_message(-kMaxHeadingDeg, kMaxHeadingDeg, "deg", v[2])});
         ok = false;
       }
     }

@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "world/error.hpp"
+#include "world/limits.hpp"
 #include "world/world.hpp"
 
 namespace npsnet::world {
 
 inline constexpr size_t kMaxIdLength = 11;  // the DIS marking's 11 characters
-inline constexpr double kMaxDurationS = 1e7;  // longest run (s, ~116 days): 1e9 ticks at dt 0.01
 
 struct VehicleSpec {
   std::string id, kind;
@@ -48,6 +48,7 @@ struct Scenario {
   double duration_s = 60;
   std::filesystem::path terrain, objects, kinds;
   geo::Geodetic origin{35.98, -121.25, 0.0};
+  int origin_line = 0;  // where origin_geodetic was given; 0 = not given (the default above)
   double water_level_m = -1e9;
   // "continuous" (swept spheres, border objects, N-body, shape tiers: issue 6) or "thesis" (the
   // 1991 method, issue 3); collision_tier forces one shape tier for every pair ("auto": each

@@ -1,6 +1,7 @@
 #include "world/toml_util.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 namespace npsnet::world {
@@ -30,6 +31,22 @@ std::optional<double> TomlReader::number(const toml::table& t, const std::string
   }
   if (!std::isfinite(v)) {
     problem(n, field, "must be finite (got " + std::string(std::isnan(v) ? "nan" : "inf") + ")");
+    return std::nullopt;
+  }
+  return v;
+}
+
+std::string range_message(double lo, double hi, const std::string& unit, double got) {
+  char b[160];
+  std::snprintf(b, sizeof b, "must be %g to %g%s%s (got %g)", lo, hi, unit.empty() ? "" : " ", unit.c_str(), got);
+  return b;
+}
+
+std::optional<double> TomlReader::number_in(const toml::table& t, const std::string& key, const std::string& field,
+                                            bool required, int table_line, double lo, double hi, const std::string& unit) {
+  const auto v = number(t, key, field, required, table_line);
+  if (v && (*v < lo || *v > hi)) {
+    problem(t.get(key), field, range_message(lo, hi, unit, *v));
     return std::nullopt;
   }
   return v;

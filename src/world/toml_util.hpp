@@ -10,6 +10,9 @@
 
 namespace npsnet::world {
 
+// "must be LO to HI UNIT (got V)" with numbers as people write them (%g), never 310 digits.
+std::string range_message(double lo, double hi, const std::string& unit, double got);
+
 // Parses `file`; a syntax error becomes InputError with its line.
 toml::table parse_toml_file(const std::string& file);
 
@@ -26,6 +29,9 @@ class TomlReader {
   // Reads a number (integer or float); reports missing (if required), wrong type, NaN/inf.
   std::optional<double> number(const toml::table& t, const std::string& key, const std::string& field,
                                bool required, int table_line);
+  // A number within [lo, hi]; out of range: "must be LO to HI UNIT (got V)", readable numbers.
+  std::optional<double> number_in(const toml::table& t, const std::string& key, const std::string& field,
+                                  bool required, int table_line, double lo, double hi, const std::string& unit = "");
   std::optional<std::string> string(const toml::table& t, const std::string& key, const std::string& field,
                                     bool required, int table_line);
   std::optional<bool> boolean(const toml::table& t, const std::string& key, const std::string& field);

@@ -139,3 +139,15 @@ TEST(BadInput, SnapshotThatCannotBeWrittenMidRunStopsTheRunAndSaysSo) {
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }
 #endif
+
+TEST(BadInput, ObjVertexThatIsNotAFiniteNumberIsRejectedWithItsLine) {
+  for (const std::string bad : {"nan", "abc", "inf", "1e999"}) {
+    const auto f = test::write_file("bad-vertex-" + bad + ".obj", "# a triangle\nv 0 0 0\nv " + bad + " 1 0\nv 0 1 0\nf 1 2 3\n");
+    const auto o = test::npsnet_cli("check " + f.string());
+    EXPECT_EQ(o.rc, 2) << o.text;
+    EXPECT_NE(o.text.find(f.string() + ":3: v: '" + bad + "' is not a finite number"), std::string::npos) << o.text;
+  }
+  const auto big = test::write_file("bad-vertex-big.obj", "v 0 0 0\nv 1e30 1 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_NE(test::npsnet_cli("check " + big.string()).text.find(":2: v: coordinate must be -10000 to 10000 m (got 1e+30)"),
+            std::string::npos);
+}
