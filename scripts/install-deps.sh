@@ -8,6 +8,7 @@ PKGS=(build-essential cmake pkg-config git
   nlohmann-json3-dev libcli11-dev libspdlog-dev
   libosmesa6-dev libgl-dev libglfw3-dev xvfb xauth libspnav-dev xdotool x11-utils imagemagick
   libgtest-dev libgmock-dev libbenchmark-dev libbullet-dev libfcl-dev gnuplot-nox
+  gdal-bin python3-gdal python3-numpy
   tshark iproute2 smcroute)
 missing=()
 for p in "${PKGS[@]}"; do

@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include "node/options.hpp"
+#include "node/world_summary.hpp"
 #include "world/scenario.hpp"
 
 namespace npsnet::node {
@@ -16,7 +17,7 @@ std::string lower_ext(const std::filesystem::path& p) {
   return e;
 }
 
-void check_one(const std::filesystem::path& f, std::vector<world::Problem>& problems) {
+void check_one(const std::filesystem::path& f, std::vector<world::Problem>& problems, std::string& notes) {
   const std::string fname = f.string();
   if (!std::filesystem::exists(f)) {
     problems.push_back({fname, 0, "file", "file not found"});
@@ -35,7 +36,10 @@ void check_one(const std::filesystem::path& f, std::vector<world::Problem>& prob
       }
       if (t.contains("world") || t.contains("vehicle")) {
         const auto sc = world::load_scenario(f);
-        (void)world::build_world(sc);
+        const auto w = world::build_world(sc);
+        const std::string crs = raster_crs_name(sc.terrain);
+        if (const std::string warn = origin_warning(sc, w, crs); !warn.empty()) notes += warn + "\n";
+        notes += fname + ": world\n" + world_summary(sc, w, crs);
       } else {
         world::ModelLibrary models;
         (void)world::KindTable::load(f, models);
@@ -61,8 +65,10 @@ void check_one(const std::filesystem::path& f, std::vector<world::Problem>& prob
 
 int check_command(const std::vector<std::string>& files) {
   std::vector<world::Problem> problems;
-  for (const auto& f : files) check_one(f, problems);
+  std::string notes;
+  for (const auto& f : files) check_one(f, problems, notes);
   for (const auto& p : problems) std::printf("%s\n", p.str().c_str());
+  if (problems.empty()) std::printf("%s", notes.c_str());
   if (problems.empty()) std::printf("ok: %zu file(s)\n", files.size());
   return problems.empty() ? 0 : 2;
 }

@@ -18,6 +18,7 @@
 #include "node/net_bridge.hpp"
 #endif
 // --- network end ---
+#include "node/world_summary.hpp"
 #include "world/scenario.hpp"
 
 namespace npsnet::node {
@@ -107,6 +108,9 @@ int run_command(const RunOptions& opt) {
       return 2;
     }
   }
+
+  if (const std::string warn = origin_warning(sc, w, raster_crs_name(sc.terrain)); !warn.empty())
+    std::fprintf(stderr, "%s\n", warn.c_str());
   const long ticks = o.frames ? *o.frames
                               : static_cast<long>(std::ceil((o.seconds ? *o.seconds : sc.duration_s) / o.dt - 1e-9));
   if (o.events.empty()) o.events = o.snapshots / "events.jsonl";

@@ -16,10 +16,13 @@ using namespace npsnet;
 namespace fs = std::filesystem;
 
 namespace {
-const fs::path kDir = fs::temp_directory_path() / "npsnet-tests" / "check-vs-run";
+// One folder per test: ctest runs the tests of this file in parallel processes.
+fs::path kDir;
 
 // A 2 km flat square at 50 m posts, no coordinate system (local metres).
 void write_terrain() {
+  kDir = fs::temp_directory_path() / "npsnet-tests" /
+         (std::string("check-vs-run-") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
   fs::create_directories(kDir);
   std::ofstream t(kDir / "t.asc");
   t << "ncols 41\nnrows 41\nxllcorner 0\nyllcorner 0\ncellsize 50\n";
