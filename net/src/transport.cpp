@@ -239,6 +239,11 @@ std::size_t UdpTransport::groups_joined() const noexcept { return impl_->joined.
 std::size_t UdpTransport::socket_count() const noexcept { return impl_->sockets.size(); }
 
 std::optional<std::span<const std::uint8_t>> UdpTransport::receive() noexcept {
+  UdpSource ignored;
+  return receive(ignored);
+}
+
+std::optional<std::span<const std::uint8_t>> UdpTransport::receive(UdpSource& source) noexcept {
   Impl& m = *impl_;
   const std::size_t n_sockets = m.sockets.size();
   for (std::size_t k = 0; k < n_sockets; ++k) {
@@ -252,10 +257,14 @@ std::optional<std::span<const std::uint8_t>> UdpTransport::receive() noexcept {
       continue;
     }
     m.next_rx = i;  // drain this socket first next time
+    source.address = from.address().is_v4() ? from.address().to_v4().to_uint() : 0;
+    source.port = from.port();
     return std::span<const std::uint8_t>(m.buffer.data(), n);
   }
   return std::nullopt;
 }
+
+int UdpTransport::native_handle() const noexcept { return impl_->sockets.front().native_handle(); }
 
 const UdpUrl& UdpTransport::destination() const noexcept { return impl_->url; }
 const std::string& UdpTransport::iface() const noexcept { return impl_->iface; }

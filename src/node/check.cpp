@@ -3,6 +3,7 @@
 #include <fstream>
 #include <toml++/toml.h>
 
+#include "node/capture_commands.hpp"
 #include "node/options.hpp"
 #include "node/world_summary.hpp"
 #include "world/scenario.hpp"
@@ -21,6 +22,10 @@ void check_one(const std::filesystem::path& f, std::vector<world::Problem>& prob
   const std::string fname = f.string();
   if (!std::filesystem::exists(f)) {
     problems.push_back({fname, 0, "file", "file not found"});
+    return;
+  }
+  if (is_capture_file(f)) {  // a recorded exercise: line = frame number
+    for (const auto& p : check_capture(f)) problems.push_back({fname, static_cast<int>(p.frame), p.field, p.message});
     return;
   }
   const std::string ext = lower_ext(f);

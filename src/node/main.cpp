@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "node/capture_commands.hpp"
 #include "node/cli.hpp"
 #include "node/options.hpp"
 #include "world/scenario.hpp"
@@ -61,14 +62,17 @@ Exit codes: 0 ok, 2 bad input (nothing written), 1 failure while running.)");
   run->add_option("--record-input", o.record_input, "write the player's actions to this JSON Lines file");
   std::vector<std::string> files;
   auto* check = app.add_subcommand("check", "validate scenario, terrain, object, kind and model files");
-  check->add_option("FILE", files, "files to check")->required();
+  check->add_option("FILE", files, "files to check (a .pcap/.pcapng capture: PDUs by type, malformed ones)")->required();
   run->footer(R"(Examples:
   npsnet run --seconds 20 --snapshots out/ --snapshot-every 5
   npsnet run --scenario scenarios/fort-hunter-liggett.toml --no-render --events fhl.jsonl
   npsnet run --max-snapshots 50 --max-snapshots-per-minute 20    bound the PNGs of a dense world)");
   check->footer(R"(Examples:
   npsnet check scenarios/default.toml             problems as FILE:LINE: field: message, or a world summary
-  npsnet check my-objects.csv models/tree.obj my-terrain.tif)");
+  npsnet check my-objects.csv models/tree.obj my-terrain.tif
+  npsnet check exercise.pcap                     a recording: PDUs by type, malformed PDUs with their frame)");
+  npsnet::node::CaptureOptions capture;
+  npsnet::node::add_capture_commands(app, capture);  // record, replay
   if (npsnet::node::misplaced_first_argument(app, argc, argv)) return 2;
   try {
     app.parse(argc, argv);
@@ -89,6 +93,7 @@ Exit codes: 0 ok, 2 bad input (nothing written), 1 failure while running.)");
   }
   try {
     if (*run) return npsnet::node::run_command(o);
+    if (auto rc = npsnet::node::run_capture_command(capture)) return *rc;
     return npsnet::node::check_command(files);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "npsnet: internal error: %s\n", e.what());

@@ -16,6 +16,7 @@
 
 namespace {
 
+using lan::of_type;
 using nlohmann::json;
 const std::filesystem::path kData = std::filesystem::path(NPSNET_SOURCE_DIR) / "tests" / "multinode" / "data";
 
@@ -33,8 +34,6 @@ std::vector<std::string> node_args(const std::string& scenario, int port, int no
           "--events", (dir / ("events_" + tag + ".jsonl")).string(),
           "--snapshots", (dir / ("snap_" + tag)).string()};
 }
-
-using lan::of_type;
 
 std::set<std::string> pair_of(const json& c) { return {c.value("a", ""), c.value("b", "")}; }
 

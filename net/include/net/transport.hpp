@@ -20,6 +20,8 @@
 //    opens one more receive socket on the same port and joins there; send_to() always leaves
 //    from the first socket. receive() drains the sockets in turn.
 //  * Nothing here allocates per call: one receive buffer of 65536 octets is kept.
+//  * receive(from) also gives the sender's IPv4 address and port (a recorder writes them into
+//    its pcap); native_handle() is the socket's descriptor, for poll(2) over several sockets.
 #pragma once
 
 #include <cstddef>
@@ -47,6 +49,12 @@ inline constexpr std::string_view kDefaultNetUrl = "udp://239.1.2.3:3000";
 inline constexpr std::string_view kDefaultIface = "127.0.0.1";
 
 Result<UdpUrl, std::string> parse_udp_url(std::string_view url);
+
+// Where a datagram came from: IPv4 address and UDP port, host byte order.
+struct UdpSource {
+  std::uint32_t address = 0;
+  std::uint16_t port = 0;
+};
 
 struct TransportConfig {
   std::string url{kDefaultNetUrl};
@@ -83,6 +91,11 @@ class UdpTransport {
   // Next datagram already received, or empty when none is waiting (never blocks). The span
   // stays valid until the next receive()/poll().
   std::optional<std::span<const std::uint8_t>> receive() noexcept;
+  // The same, and the sender's address and port in `from`.
+  std::optional<std::span<const std::uint8_t>> receive(UdpSource& from) noexcept;
+  // The first socket's file descriptor (to wait on several transports with poll(2); the only
+  // socket unless many-groups mode opened more); do not close it.
+  int native_handle() const noexcept;
 
   // Calls on_datagram(std::span<const std::uint8_t>) for each waiting datagram, at most
   // max_datagrams_per_poll; returns how many.

@@ -1,0 +1,62 @@
+// record/recorder.hpp — `npsnet record`: join an exercise's multicast group(s) and write every
+// datagram, with its arrival time, to a pcap file (see pcap_file.hpp).
+// Contract:
+//  * Recorder(options) joins every group of options.groups (throws std::runtime_error with an
+//    actionable message, before the output file is created) and then creates the file.
+//  * run() receives until options.seconds have passed (0: no limit) or stop() is called (from a
+//    signal handler: it only sets a flag); the wait for datagrams is at most 50 ms, and the file
+//    is flushed at least every options.flush_s seconds, so a killed recorder loses at most that.
+//  * Each datagram is stamped with the wall clock (UNIX seconds) right after recvfrom and written
+//    behind IPv4/UDP headers holding the sender's address and port and the group's address and
+//    port. With options.exercise, a datagram whose first PDU belongs to another exercise is not
+//    written (counted in other_exercise()).
+#pragma once
+
+#include <atomic>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "net/transport.hpp"
+#include "record/pcap_file.hpp"
+#include "record/pdu_tally.hpp"
+
+namespace npsnet::record {
+
+struct RecordOptions {
+  // Every group to join, each a transport (url + iface). One for the exercise's group; with
+  // AOI (--aoi CELL_M, shared/ARCHITECTURE.md) one per cell group: push them all here.
+  std::vector<net::TransportConfig> groups;
+  std::optional<int> exercise;  // write only this exercise id
+  double seconds = 0;           // 0: until stop()
+  double flush_s = 0.1;         // longest time between two flushes, s
+  std::filesystem::path out;
+};
+
+class Recorder {
+ public:
+  explicit Recorder(const RecordOptions& o);
+  ~Recorder();
+  void run();
+  static void stop() noexcept;  // async-signal-safe
+
+  const PduTally& tally() const { return tally_; }
+  std::uint64_t other_exercise() const { return other_exercise_; }
+  double elapsed_s() const { return elapsed_s_; }
+  const PcapWriter& writer() const { return *writer_; }
+  // Several lines: what was recorded, for the end of `npsnet record`.
+  std::string summary() const;
+
+ private:
+  RecordOptions opt_;
+  std::vector<net::UdpTransport> socks_;
+  std::unique_ptr<PcapWriter> writer_;
+  PduTally tally_;
+  std::uint64_t other_exercise_ = 0;
+  double elapsed_s_ = 0;
+  static std::atomic<bool> stop_;
+};
+
+}  // namespace npsnet::record
