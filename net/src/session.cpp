@@ -5,9 +5,10 @@ namespace net {
 
 Session::Session(const SessionConfig& config)
     : config_(config),
-      transport_(config.transport),
       parser_(ReceiveFilter{config.filter_exercise, config.exercise_id, config.ignore_own_echo,
-                            config.site, config.application}) {}
+                            config.site, config.application}) {
+  if (!config.offline) transport_.emplace(config.transport);
+}
 
 bool Session::send_raw(std::uint32_t group, std::span<const std::uint8_t> bytes, std::uint8_t pdu_type) noexcept {
   if (!transmit(group, bytes)) {
@@ -42,19 +43,21 @@ bool Session::send_to(std::uint32_t group, const DatagramBuilder& datagram) noex
 namespace net {
 
 bool Session::join_group(std::uint32_t group) noexcept {
-  if (!transport_.join(group)) {
+  if (!transport_) return false;  // offline: no groups
+  if (!transport_->join(group)) {
     ++counters_.aoi_join_failures;
     return false;
   }
   ++counters_.aoi_joins;
-  counters_.aoi_groups_held = transport_.groups_joined();
+  counters_.aoi_groups_held = transport_->groups_joined();
   return true;
 }
 
 bool Session::leave_group(std::uint32_t group) noexcept {
-  const bool ok = transport_.leave(group);
+  if (!transport_) return false;
+  const bool ok = transport_->leave(group);
   ++counters_.aoi_leaves;
-  counters_.aoi_groups_held = transport_.groups_joined();
+  counters_.aoi_groups_held = transport_->groups_joined();
   return ok;
 }
 

@@ -180,3 +180,44 @@ TEST(UdpTransport, UnicastToOurselvesOnLoopback) {
   EXPECT_EQ(t.poll([](std::span<const std::uint8_t>) {}), 0u);
   EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::milliseconds(50));
 }
+
+TEST(UdpTransport, ReceiveFromGivesTheSendersAddressAndPort) {
+  const std::uint16_t port = test_port(3);
+  net::TransportConfig c;
+  c.url = "udp://239.1.2.3:" + std::to_string(port);
+  net::UdpTransport rx(c), tx(c);
+  const std::vector<std::uint8_t> msg = bytes_of(sample_collision());
+  ASSERT_TRUE(tx.send(msg)) << tx.last_error();
+  net::UdpSource from;
+  std::optional<std::span<const std::uint8_t>> d;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (!(d = rx.receive(from)) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ASSERT_TRUE(d);
+  EXPECT_EQ(std::vector<std::uint8_t>(d->begin(), d->end()), msg);
+  EXPECT_EQ(from.address, 0x7F000001u) << "sent on --iface 127.0.0.1";
+  EXPECT_EQ(from.port, port) << "the sender's socket is bound to the group's port";
+  EXPECT_GE(rx.native_handle(), 0);
+}
+
+TEST(Session, OfflineCountsSendsAndHearsNothing) {
+  net::SessionConfig c = session_config(test_port(0), 1, 1, 1);
+  c.offline = true;
+  c.transport.url = "not a url";  // never opened
+  net::Session s(c);
+  EXPECT_TRUE(s.offline());
+  auto es = sample_entity_state(1);
+  es.header.exercise_id = 1;
+  es.entity_id = s.entity_id(3);
+  EXPECT_TRUE(s.send(es));
+  EXPECT_EQ(s.counters().sent[1], 1u);
+  EXPECT_EQ(s.counters().datagrams_sent, 1u);
+  EXPECT_EQ(s.poll([](const auto&) {}), 0u);
+  // A recorded datagram goes through the same filter and counters as one from a socket.
+  auto other = es;
+  other.entity_id = {1, 2, 5};
+  int n = 0;
+  EXPECT_EQ(s.parse(bytes_of(other), [&](const auto&) { ++n; }), 1u);
+  EXPECT_EQ(s.parse(bytes_of(es), [&](const auto&) { ++n; }), 0u) << "our own echo";
+  EXPECT_EQ(n, 1);
+}

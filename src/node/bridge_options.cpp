@@ -43,6 +43,7 @@ net::SessionConfig session_config(const BridgeOptions& o) {
     if (auto g = net::AoiGrid::make(u.value().address, o.aoi_cell_m, o.aoi_groups); !g) throw std::runtime_error(g.error());
     c.transport.join_destination = false;  // the cell groups are joined as the vehicles need them
   }
+  c.offline = o.offline;
   return c;
 }
 

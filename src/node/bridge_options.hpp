@@ -21,6 +21,7 @@ struct BridgeOptions {
   double aoi_cell_m = 0;                     // --aoi: cell size, m; 0 = off (one group)
   int aoi_groups = net::kAoiDefaultMaxGroups;  // --aoi-groups: at most this many cell groups
   int ttl = 1;                               // --ttl: multicast TTL (more than 1 to cross routers)
+  bool offline = false;                      // no socket (run --replay): sends go nowhere
 };
 
 // Application ids at or above this carry cultural features (fixed objects).

@@ -46,6 +46,7 @@ Exit codes: 0 ok, 2 bad input (nothing written), 1 failure while running.)");
   run->add_option("--ttl", o.ttl, "multicast TTL (default 1: one LAN; more to cross multicast routers)")
       ->check(CLI::Range(1, 255));
   run->add_option("--start-at", o.start_at, "start the scenario clock at this UNIX time")->check(finite_in(0, 1e11, "s"));
+  run->add_option("--replay", o.replay, "a recorded exercise (pcap) as the remote side, no network; --start-at = its t 0");
   run->add_option("--snapshot-every", o.snapshot_every, "also write a frame every S scenario seconds")
       ->check(finite_in(0, npsnet::world::kMaxDurationS, "s", true));
   run->add_option("--max-snapshots", o.max_snapshots, "snapshot budget: most frames per run (default 200)")

@@ -81,7 +81,13 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
 
 NetBridge::~NetBridge() = default;
 
+void NetBridge::set_source(DatagramSource source) {
+  source_ = std::move(source);
+  start_s_ = now_s_ = clock_s();
+}
+
 double NetBridge::clock_s() const {
+  if (source_) return sim_.world().t;
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
@@ -167,6 +173,7 @@ void NetBridge::before_step(world::World& w) {
   check_signal();
   if (aoi_) aoi_->update(w, own_, *session_);  // join / leave before draining the socket
   session_->poll_datagrams([&](std::span<const std::uint8_t> d) { receive(d, now_s_); });
+  if (source_) source_(now_s_, *this);
   remotes_.expire(now_s_);
   remotes_.set_poses(now_s_);
 }

@@ -9,7 +9,9 @@
 // Contract (shared/ARCHITECTURE.md, Network):
 //  * Receive: receive(datagram, arrival_s) takes one UDP payload (from the socket, a recording
 //    or a test) and hands its PDUs to the handlers below; before_step polls the socket into it.
-//    arrival_s is the bridge clock (steady seconds, clock_s()).
+//    arrival_s is the bridge clock (steady seconds, clock_s()). set_source() replaces the socket
+//    by another source of datagrams (run --replay: a recording, node/replay_feed.hpp), called
+//    each tick with the bridge clock, which is then the scenario clock (world t, s).
 //  * Local vehicles (ents.local && ents.node == --node) go out as Entity State PDUs: ECEF
 //    position (m), DIS Euler angles (rad), ECEF velocity (m/s) and acceleration (m/s^2), yaw
 //    rate (rad/s, body z), the kind's DIS type, marking = scenario id, damage in appearance
@@ -85,8 +87,12 @@ class NetBridge {
 
   // The receive path: one datagram's bytes, arrived at arrival_s (bridge clock, s). Any bytes.
   void receive(std::span<const std::uint8_t> datagram, double arrival_s);
-  // The bridge clock: steady seconds.
+  // The bridge clock: steady seconds, or scenario seconds with a source.
   double clock_s() const;
+  // A source of datagrams besides the socket: called in before_step with the bridge clock, it
+  // hands receive() every datagram that has arrived by then.
+  using DatagramSource = std::function<void(double now_s, NetBridge& bridge)>;
+  void set_source(DatagramSource source);
 
   void before_step(world::World& w);
   bool decides(const collision::Contact& c);
@@ -184,6 +190,7 @@ class NetBridge {
   std::uint16_t event_number_ = 0;
   world::Changes inject_;  // reused for injected changes
   std::function<void(const TickReport&)> chained_on_tick_;
+  DatagramSource source_;  // empty: the socket only
 };
 
 }  // namespace npsnet::node

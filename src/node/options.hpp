@@ -18,7 +18,8 @@ struct RunOptions {
   std::string net = "off";
   std::string iface = "127.0.0.1";
   int node = 1, exercise = 1, site = 1, app = -1;  // app: default = node
-  std::optional<double> start_at;
+  std::optional<double> start_at;              // with --replay: the recording's UNIX time of t = 0
+  std::filesystem::path replay;                // --replay: a recording as the remote side, no network
   double aoi_m = 0;          // --aoi CELL_M: area-of-interest cell groups; 0 = off (one group)
   int aoi_groups = 1024;     // --aoi-groups N: at most N cell groups
   int ttl = 1;               // --ttl: multicast TTL

@@ -17,6 +17,9 @@
 #ifdef NPSNET_HAVE_NET
 #include "node/net_bridge.hpp"
 #endif
+#ifdef NPSNET_HAVE_RECORD
+#include "node/replay_feed.hpp"
+#endif
 // --- network end ---
 #include "node/world_summary.hpp"
 #include "world/scenario.hpp"
@@ -49,14 +52,19 @@ int run_command(const RunOptions& opt) {
   }
   // --- network ---
   const bool net_on = o.net != "off";
+  const bool replay_on = !o.replay.empty();  // a recording as the remote side, no socket
+  if (replay_on && net_on) {
+    std::fprintf(stderr, "--replay %s: a replay has no network; leave out --net %s\n", o.replay.string().c_str(), o.net.c_str());
+    return 2;
+  }
   if (o.aoi_m > 0 && !net_on) {
     std::fprintf(stderr, "--aoi %g: needs --net udp://GROUP:PORT (the cell groups are multicast groups)\n", o.aoi_m);
     return 2;
   }
 #ifdef NPSNET_HAVE_NET
   double dis_timeout_s = dis_defaults::kTimeoutS;
-  if (net_on) {
-    if (auto u = net::parse_udp_url(o.net); !u) {
+  if (net_on || replay_on) {
+    if (auto u = net::parse_udp_url(o.net); net_on && !u) {
       std::fprintf(stderr, "--net %s: %s\n", o.net.c_str(), u.error().c_str());
       return 2;
     }
@@ -68,9 +76,25 @@ int run_command(const RunOptions& opt) {
     }
   }
   const BridgeOptions net_opt{o.net, o.iface, o.node, o.exercise, o.site, o.app > 0 ? o.app : o.node, dis_timeout_s,
-                              o.aoi_m, o.aoi_groups, o.ttl};
+                              o.aoi_m, o.aoi_groups, o.ttl, replay_on};
   std::unique_ptr<net::Session> session;  // opened before anything is written
-  if (net_on) {
+#ifdef NPSNET_HAVE_RECORD
+  std::unique_ptr<ReplayFeed> feed;
+  if (replay_on) {
+    try {
+      feed = std::make_unique<ReplayFeed>(o.replay, o.start_at);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s:0: file: %s\n", o.replay.string().c_str(), e.what());
+      return 2;
+    }
+  }
+#else
+  if (replay_on) {
+    std::fprintf(stderr, "--replay: this build cannot read captures (no libpcap or NPSNET_NET=OFF)\n");
+    return 2;
+  }
+#endif
+  if (net_on || replay_on) {
     try {
       session = open_session(net_opt);
     } catch (const std::exception& e) {
@@ -79,8 +103,8 @@ int run_command(const RunOptions& opt) {
     }
   }
 #else
-  if (net_on) {
-    std::fprintf(stderr, "--net %s: this build has no networking (NPSNET_NET=OFF); use --net off\n", o.net.c_str());
+  if (net_on || replay_on) {
+    std::fprintf(stderr, "--net/--replay: this build has no networking (NPSNET_NET=OFF); use --net off\n");
     return 2;
   }
 #endif
@@ -191,7 +215,7 @@ int run_command(const RunOptions& opt) {
   // --- network ---
 #ifdef NPSNET_HAVE_NET
   std::unique_ptr<NetBridge> bridge;
-  if (net_on) {
+  if (net_on || replay_on) {
     try {
       bridge = std::make_unique<NetBridge>(net_opt, std::move(session), sim, log);
     } catch (const std::exception& e) {
@@ -199,11 +223,14 @@ int run_command(const RunOptions& opt) {
       return 2;
     }
     bridge->attach();
+#ifdef NPSNET_HAVE_RECORD
+    if (feed) bridge->set_source([&feed](double now_s, NetBridge& b) { feed->feed(now_s, b); });
+#endif
   }
 #endif
   // --- network end ---
   const bool paced = o.realtime || o.window || net_on;  // --net: scenario time = wall time
-  if (o.start_at)
+  if (o.start_at && !replay_on)  // with --replay, --start-at is the recording's t = 0: no wait
     while (wall_now() < *o.start_at) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   auto t0 = std::chrono::steady_clock::now();
   long next_progress = ticks / 10;
@@ -259,6 +286,9 @@ int run_command(const RunOptions& opt) {
   if (bridge) {
     bridge->leave();
     std::fprintf(stderr, "%s\n", bridge->summary().c_str());
+#ifdef NPSNET_HAVE_RECORD
+    if (feed) std::fprintf(stderr, "%s\n", feed->summary().c_str());
+#endif
   }
 #endif
   // --- network end ---

@@ -16,7 +16,6 @@
 
 namespace {
 
-using lan::of_type;
 using nlohmann::json;
 const std::filesystem::path kData = std::filesystem::path(NPSNET_SOURCE_DIR) / "tests" / "multinode" / "data";
 

@@ -6,7 +6,8 @@
 // PDUs as the nodes' counters say they sent; the recording replayed into a fresh node 3 gives
 // that node the same remote entities, collisions, crater and tree state as the live node 3; the
 // killed recorder's file is readable; a cut recording is read up to the cut; a file that is not
-// a capture is refused with exit 2.
+// a capture is refused with exit 2; `run --replay` of the recording as node 1 logs what the live
+// node 1 logged (joins, collisions, crater) and writes the collision snapshots.
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -162,6 +163,49 @@ void ReplayIntoAThirdNodeShowsWhatTheLiveThirdNodeSaw() {
   EXPECT_EQ(replayed.tree2, live.tree2);
 }
 
+// run --replay --node 1: node 1 again, headless and with no network, its remote side read from
+// the recording (its own PDUs in it are its echo): the same joins, collisions (decided here
+// again, as live), crater and tree state as the live node 1, and the collision snapshots.
+void AfterActionReviewMatchesTheLiveNode() {
+  char s[64];
+  std::snprintf(s, sizeof s, "%.3f", start);
+  const fs::path snaps = dir / "aar";
+  const auto r = sh(npsnet() + " run --scenario '" + (kData / "record.toml").string() + "' --replay '" +
+                    (dir / "rec.pcap").string() + "' --node 1 --start-at " + s + " --seconds 8 --snapshot-every 4 --size 320x180" +
+                    " --snapshots '" + snaps.string() + "' --events '" + (dir / "aar.jsonl").string() + "' 2>&1");
+  ASSERT_EQ(r.rc, 0) << r.out;
+  EXPECT_NE(r.out.find("replay: " + (dir / "rec.pcap").string() + ": "), std::string::npos) << r.out;
+  const auto live_ev = lan::read_events(dir / "events_1.jsonl");
+  const auto aar_ev = lan::read_events(dir / "aar.jsonl");
+  const Seen live = seen(live_ev), aar = seen(aar_ev);
+  EXPECT_EQ(live.joined, (std::set<std::string>{"a2", "a2b", "h2", "s2"}));
+  EXPECT_EQ(aar.joined, live.joined);
+  EXPECT_EQ(aar.collisions, live.collisions);
+  EXPECT_EQ(aar.collisions, (std::set<std::string>{"a2/t1:kill/kill", "a2b/t1b:bounce/bounce"}));
+  for (const auto& c : of_type(aar_ev, "collision")) EXPECT_NE(c["method"], "network") << "node 1 decides its contacts";
+  ASSERT_EQ(aar.craters.size(), 1u);
+  ASSERT_EQ(live.craters.size(), 1u);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(aar.craters[0]["point"][k].get<double>(), live.craters[0]["point"][k].get<double>(), 0.01);
+  EXPECT_EQ(aar.tree2, live.tree2);
+  // The collision snapshots of node 1's vehicles, and the periodic frames, are written.
+  for (const char* f : {"collision-a2-t1-result.png", "collision-a2b-t1b-imminent.png", "periodic-t00004.0.png"}) {
+    bool found = false;
+    for (const auto& e : fs::directory_iterator(snaps))
+      if (e.path().filename().string().find(f) != std::string::npos && fs::file_size(e.path()) > 1000) found = true;
+    EXPECT_TRUE(found) << f << " in " << snaps;
+  }
+  // A replay with --net, or of a file that is not a capture, is refused (exit 2).
+  const auto both = sh(npsnet() + " run --scenario '" + (kData / "record.toml").string() + "' --no-render --replay '" +
+                       (dir / "rec.pcap").string() + "' --net udp://239.1.2.3:3000 --events '" + (dir / "x.jsonl").string() + "' 2>&1");
+  EXPECT_EQ(both.rc, 2) << both.out;
+  const auto bad = sh(npsnet() + " run --scenario '" + (kData / "record.toml").string() + "' --no-render --replay '" +
+                      (kData / "record.toml").string() + "' --events '" + (dir / "x.jsonl").string() + "' 2>&1");
+  EXPECT_EQ(bad.rc, 2) << bad.out;
+  EXPECT_NE(bad.out.find("record.toml:0: file: not a pcap"), std::string::npos) << bad.out;
+  EXPECT_FALSE(fs::exists(dir / "x.jsonl")) << "nothing written on bad input";
+}
+
 void KilledRecorderLeavesAReadableFile() {
   const auto chk = sh(npsnet() + " check '" + (dir / "killed.pcap").string() + "' 2>&1");
   EXPECT_EQ(chk.rc, 0) << chk.out;
@@ -213,6 +257,10 @@ TEST(RecordReplay, LiveExerciseRecordedDecodedReplayedCutAndKilled) {
   {
     SCOPED_TRACE("replayed into a third node: what the live third node saw");
     ReplayIntoAThirdNodeShowsWhatTheLiveThirdNodeSaw();
+  }
+  {
+    SCOPED_TRACE("run --replay: after-action review of node 1");
+    AfterActionReviewMatchesTheLiveNode();
   }
   {
     SCOPED_TRACE("a recorder killed half-way leaves a readable file");

@@ -15,10 +15,14 @@
 //  * poll_datagrams(f) drains the waiting datagrams as raw bytes, f(std::span<const uint8_t>);
 //    parse(datagram, visitor) walks one datagram (from the socket, a recording or a test) through
 //    the session's filter and counters exactly as poll does.
+//  * SessionConfig::offline: no socket at all (a node fed from a recording): send() encodes and
+//    counts as usual, and the datagram goes nowhere; poll() finds nothing; transport() must not
+//    be called.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include "net/codec.hpp"
 #include "net/counters.hpp"
@@ -34,6 +38,7 @@ struct SessionConfig {
   std::uint16_t application = 1;
   bool ignore_own_echo = true;   // drop PDUs from our (site, application)
   bool filter_exercise = true;   // drop PDUs of other exercises
+  bool offline = false;          // no socket: sends are counted and dropped (replay of a recording)
 };
 
 class Session {
@@ -67,12 +72,13 @@ class Session {
   template <class Visitor>
   std::size_t poll(Visitor&& visitor) {
     std::size_t delivered = 0;
-    transport_.poll([&](std::span<const std::uint8_t> d) { delivered += parse(d, visitor); });
+    if (!transport_) return 0;
+    transport_->poll([&](std::span<const std::uint8_t> d) { delivered += parse(d, visitor); });
     return delivered;
   }
   template <class F>
   std::size_t poll_datagrams(F&& on_datagram) {
-    return transport_.poll(on_datagram);
+    return transport_ ? transport_->poll(on_datagram) : 0;
   }
   template <class Visitor>
   std::size_t parse(std::span<const std::uint8_t> datagram, Visitor&& visitor) {
@@ -86,16 +92,18 @@ class Session {
   const SessionConfig& config() const noexcept { return config_; }
   const Counters& counters() const noexcept { return counters_; }
   Counters& counters() noexcept { return counters_; }
-  UdpTransport& transport() noexcept { return transport_; }
+  UdpTransport& transport() noexcept { return *transport_; }
+  bool offline() const noexcept { return !transport_; }
 
  private:
   bool send_raw(std::uint32_t group, std::span<const std::uint8_t> bytes, std::uint8_t pdu_type) noexcept;
   bool transmit(std::uint32_t group, std::span<const std::uint8_t> bytes) noexcept {
-    return group == kDestination ? transport_.send(bytes) : transport_.send_to(group, bytes);
+    if (!transport_) return true;  // offline: counted, sent nowhere
+    return group == kDestination ? transport_->send(bytes) : transport_->send_to(group, bytes);
   }
 
   SessionConfig config_;
-  UdpTransport transport_;
+  std::optional<UdpTransport> transport_;  // empty when offline
   DatagramParser parser_;
   Counters counters_;
   std::array<std::uint8_t, kMaxPduSize> buffer_{};
