@@ -34,6 +34,8 @@ std::vector<std::string> node_args(const std::string& scenario, int port, int no
           "--snapshots", (dir / ("snap_" + tag)).string()};
 }
 
+using lan::of_type;
+
 std::set<std::string> pair_of(const json& c) { return {c.value("a", ""), c.value("b", "")}; }
 
 }  // namespace
