@@ -286,21 +286,23 @@ void detonate(const world::World& w, const world::DetonationRecord& d, world::Ch
     k.to_state = last_state(w.kinds[ents.kind[hit]]);
     k.set_vel = true;
     k.cruise_mps = 0;
-    if (ents.local[hit]) out.entities.push_back(k);
-  } else {
+    if (ents.local[hit] && d.hit_destroys) out.entities.push_back(k);
+  } else if (d.crater) {
     const double agl = point.z() - w.terrain.height(point.x(), point.y());
     if (agl < km.crater_radius_m) out.craters.push_back({point, km.crater_radius_m, km.crater_depth_m});
   }
-  // Blast: damage falls with distance: inner third destroys, middle third two levels, outer one.
-  const double R = km.blast_radius_m;
+  // Blast: damage falls with distance: inner third destroys, middle third two levels, outer one;
+  // each round of a burst (quantity) adds its levels.
+  const double R = d.blast ? km.blast_radius_m : 0.0;
   if (R <= 0) return;
+  const int q = std::max(1, d.quantity);
   auto levels = [&](double d) { return d < R / 3 ? 3 : d < 2 * R / 3 ? 2 : d < R ? 1 : 0; };
   if (d.decides_fixed) w.grid.for_each_near(w.fixed, point.x(), point.y(), R, [&](int o) {
     const int lv = levels((w.fixed.pos[o] - point).norm());
     const world::Kind& k = w.kinds[w.fixed.kind[o]];
     const int ls = last_state(k);
     if (lv == 0 || w.fixed.state[o] >= ls) return;  // out of reach, or nothing left to damage (a rock)
-    out.fixed.push_back({o, lv == 3 ? ls : std::min(ls, w.fixed.state[o] + lv)});
+    out.fixed.push_back({o, lv == 3 ? ls : std::min(ls, w.fixed.state[o] + lv * q)});
   });
   for (int e = 0; e < static_cast<int>(ents.size()); ++e) {
     if (e == munition || e == hit || !ents.active[e] || !ents.local[e]) continue;  // remote: its owner decides
@@ -310,7 +312,7 @@ void detonate(const world::World& w, const world::DetonationRecord& d, world::Ch
     if (lv == 0) continue;
     world::EntityChange ch;
     ch.entity = e;
-    ch.to_state = lv == 3 ? last_state(k) : std::min(last_state(k), ents.state[e] + 1);
+    ch.to_state = lv == 3 ? last_state(k) : std::min(last_state(k), ents.state[e] + q);
     out.entities.push_back(ch);
   }
 }

@@ -9,6 +9,7 @@
 
 #include "core/constants.hpp"
 #include "net/net.hpp"
+#include "node/munition_table.hpp"
 
 namespace npsnet::node {
 
@@ -22,6 +23,8 @@ struct BridgeOptions {
   int aoi_groups = net::kAoiDefaultMaxGroups;  // --aoi-groups: at most this many cell groups
   int ttl = 1;                               // --ttl: multicast TTL (more than 1 to cross routers)
   bool offline = false;                      // no socket (run --replay): sends go nowhere
+  // Other simulators' munitions (models/munitions.toml); null: the bridge loads the bundled one.
+  std::shared_ptr<const MunitionTable> munitions;
 };
 
 // Application ids at or above this carry cultural features (fixed objects).

@@ -20,6 +20,7 @@ inline constexpr std::uint16_t kWarheadHighExplosive = 1000;
 inline constexpr std::uint16_t kFuseContact = 1000;
 inline constexpr std::uint8_t kResultEntityImpact = 1;
 inline constexpr std::uint8_t kResultGroundImpact = 3;
+inline constexpr std::uint8_t kResultDetonation = 5;
 inline constexpr std::uint8_t kCollisionInelastic = 0;
 inline constexpr std::uint8_t kCollisionElastic = 1;
 inline constexpr std::uint8_t kEntityKindMunition = 2;

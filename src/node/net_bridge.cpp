@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "node/dis_mapping.hpp"
+#include "node/munition_codes.hpp"
 #include "node/pdu_build.hpp"
 
 namespace npsnet::node {
@@ -46,6 +47,7 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
       ownership_(net::EntityId{static_cast<std::uint16_t>(o.site), static_cast<std::uint16_t>(o.app), 0}),
       cultural_app_(static_cast<std::uint16_t>(kCulturalAppBit | o.app)) {
   if (!session_) throw std::runtime_error("--net: no session");
+  munitions_ = o.munitions ? o.munitions : std::make_shared<const MunitionTable>(MunitionTable::load(MunitionTable::default_file()));
   world::World& w = sim_.world();
   auto& ents = w.ents;
   if (ents.size() >= 0x8000)
@@ -273,10 +275,14 @@ void NetBridge::on_collision(const net::CollisionPdu& p) {
 void NetBridge::on_fire(const net::FirePdu& p) {
   const auto& w = sim_.world();
   const int shooter = remotes_.index_of(p.firing_entity_id);
-  const int mk = munition_kind_for(w.kinds, p.descriptor.munition_type);
+  const MunitionEffect fx = munitions_->effect(p.descriptor, w.kinds);
   auto ev = event("fire");
   ev["shooter"] = shooter >= 0 ? w.ents.id[shooter] : id_text(p.firing_entity_id);
-  ev["munition"] = mk >= 0 ? w.kinds[mk].name : type_text(p.descriptor.munition_type);
+  ev["munition"] = fx.kind >= 0 ? std::string(fx.name) : type_text(p.descriptor.munition_type);
+  ev["dis_type"] = type_text(p.descriptor.munition_type);
+  ev["warhead"] = fx.warhead;
+  ev["fuse"] = fuse_class(p.descriptor.fuse);
+  ev["quantity"] = p.descriptor.quantity;
   ev["round"] = id_text(p.munition_id);
   const int target = remotes_.index_of(p.target_entity_id);
   ev["target"] = target >= 0 ? w.ents.id[target] : "";
@@ -295,8 +301,9 @@ void NetBridge::on_detonation(const net::DetonationPdu& p) {
   if (!loc.allFinite()) return;
   const Vec3 point = w.terrain.frame().from_ecef(vv(loc));
   if (!point.allFinite() || !w.terrain.contains(point.x(), point.y())) return;
-  const int mk = munition_kind_for(w.kinds, p.descriptor.munition_type);
-  if (mk < 0) return;
+  const MunitionEffect fx = munitions_->effect(p.descriptor, w.kinds);
+  if (fx.kind < 0) return;  // the kinds file has no munition at all
+  const DetonationResultInfo res = detonation_result(p.detonation_result);
   int hit = -1;
   if (p.detonation_result == dis::kResultEntityImpact) {
     hit = own_entity_of(p.target_entity_id);
@@ -305,13 +312,24 @@ void NetBridge::on_detonation(const net::DetonationPdu& p) {
     if (hit >= 0 && !w.ents.active[hit]) hit = -1;
   }
   world::DetonationRecord d;
-  d.kind = mk;
+  d.kind = fx.kind;
   d.shooter = remotes_.index_of(p.firing_entity_id);
   d.round = "rd" + id_text(p.exploding_entity_id);
   d.target = hit;
   d.point = point;
-  d.result = hit >= 0 ? "entity_impact" : "ground_impact";
+  d.result = res.name;
+  const double agl = point.z() - w.terrain.height(point.x(), point.y());
+  if ((p.detonation_result == 0 || p.detonation_result == dis::kResultDetonation) && air_fuse(p.descriptor.fuse) &&
+      agl >= w.kinds[fx.kind].crater_radius_m)
+    d.result = "airburst";
   d.decides_fixed = false;  // the firing node publishes the fixed objects its round changed
+  d.crater = fx.crater && res.crater;
+  d.blast = fx.blast && res.blast;
+  d.hit_destroys = fx.hit_destroys && res.blast;
+  d.quantity = std::max<int>(1, p.descriptor.quantity);
+  d.munition_name = fx.name;
+  d.warhead = fx.warhead;
+  d.fuse = fuse_class(p.descriptor.fuse);
   sim_.inject_detonation(d);
 }
 

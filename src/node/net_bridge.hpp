@@ -35,9 +35,14 @@
 //    state (a state never goes back). Objects past index 65534 cannot be numbered: counted and
 //    reported once on stderr.
 //  * Every local fire sends a Fire PDU and every local detonation a Detonation PDU (munition
-//    type = the kind's DIS type, result 1 entity impact / 3 ground impact). A remote Detonation
-//    is queued with Simulation::inject_detonation as a detonation of the munition kind of its
-//    type (he_round when unknown): crater and blast damage as if it happened here.
+//    type = the kind's DIS type, warhead 1000 HE, fuse 1000 contact, quantity 1, result 1 entity
+//    impact / 3 ground impact). A remote Detonation is queued with Simulation::inject_detonation
+//    with the effect its descriptor has here (munition_table.hpp: our kind, or a generic class
+//    such as smoke: no crater, no blast, no damage) and its result allows (munition_codes.hpp:
+//    no crater for a dud, an entity impact, an airburst; nothing at all for a dud); a burst of
+//    `quantity` rounds adds each round's blast levels. Its event names the warhead and fuse
+//    classes and the quantity; a timed or proximity fuse bursting above the ground (result
+//    other/detonation, higher than the kind's crater radius) is logged as an airburst.
 //  * Area of interest (--aoi CELL_M, area_of_interest.hpp): each Entity State goes to the group
 //    of the cell its entity is in, and at once (past the per-tick cap) when that cell's group
 //    changed; a Fire to the group of the round's cell, a Detonation to the group of its point,
@@ -151,6 +156,7 @@ class NetBridge {
   std::uint32_t group_at(const Vec3& p) const { return aoi_ ? aoi_->group_at(p) : net::Session::kDestination; }
 
   BridgeOptions opt_;
+  std::shared_ptr<const MunitionTable> munitions_;
   Simulation& sim_;
   EventLog& log_;
   std::unique_ptr<net::Session> session_;

@@ -75,8 +75,8 @@ int run_command(const RunOptions& opt) {
       return 2;
     }
   }
-  const BridgeOptions net_opt{o.net, o.iface, o.node, o.exercise, o.site, o.app > 0 ? o.app : o.node, dis_timeout_s,
-                              o.aoi_m, o.aoi_groups, o.ttl, replay_on};
+  BridgeOptions net_opt{o.net, o.iface, o.node, o.exercise, o.site, o.app > 0 ? o.app : o.node, dis_timeout_s,
+                              o.aoi_m, o.aoi_groups, o.ttl, replay_on, nullptr};
   std::unique_ptr<net::Session> session;  // opened before anything is written
 #ifdef NPSNET_HAVE_RECORD
   std::unique_ptr<ReplayFeed> feed;
@@ -95,6 +95,12 @@ int run_command(const RunOptions& opt) {
   }
 #endif
   if (net_on || replay_on) {
+    try {
+      net_opt.munitions = std::make_shared<const MunitionTable>(MunitionTable::load(MunitionTable::default_file()));
+    } catch (const world::InputError& e) {
+      print_problems(e);
+      return 2;
+    }
     try {
       session = open_session(net_opt);
     } catch (const std::exception& e) {

@@ -107,11 +107,16 @@ void Simulation::log_changes() {
   for (const auto& d : changes_.detonations) {
     auto ev = base("detonation");
     ev["point"] = vec(d.point);
-    ev["munition"] = w_.kinds[d.kind].name;
+    ev["munition"] = *d.munition_name ? d.munition_name : w_.kinds[d.kind].name;
     ev["round"] = d.round;
     ev["shooter"] = d.shooter >= 0 ? ents.id[d.shooter] : "";
     ev["target"] = d.target >= 0 ? ents.id[d.target] : "";
     ev["result"] = d.result;
+    if (*d.warhead) {  // another node's round: what its descriptor said
+      ev["warhead"] = d.warhead;
+      ev["fuse"] = d.fuse;
+      ev["quantity"] = d.quantity;
+    }
     log_.write(ev);
   }
   for (const auto& c : changes_.craters) {

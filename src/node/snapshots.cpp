@@ -189,7 +189,8 @@ void Snapshots::before_apply(const world::World& w, const world::Changes& c) {
 }
 
 void Snapshots::after_tick(const world::World& w, const world::Changes& c, const world::Applied& a) {
-  for (const auto& d : c.detonations) r_->add_explosion(d.point, w.t, d.target >= 0 ? 1.5f : 1.0f);
+  for (const auto& d : c.detonations)
+    if (d.blast) r_->add_explosion(d.point, w.t, d.target >= 0 ? 1.5f : 1.0f);  // a dud or smoke: none
   for (int e : a.killed) {
     const Vec3 p = world::entity_centre(w, e);
     if (w.kinds[w.ents.kind[e]].explosive) r_->add_explosion(p, w.t, 1.5f);

@@ -57,8 +57,20 @@ struct DetonationRecord {
   std::string round;          // the round's name in events
   int target = -1;            // entity hit, or -1 for the ground
   Vec3 point{0, 0, 0};
-  const char* result = "";    // "entity_impact", "ground_impact"
+  const char* result = "";    // "entity_impact", "ground_impact" (remote rounds: node/munition_effects.hpp)
   bool decides_fixed = true;  // this node decides the blast damage of fixed objects (its round)
+  // What this detonation does (our rounds: everything their kind has; another node's round: as
+  // its warhead and detonation result say, node/munition_effects.hpp):
+  bool crater = true;         // a crater where the point is within crater_radius_m of the ground
+  bool blast = true;          // blast damage within blast_radius_m (and the explosion drawn)
+  bool hit_destroys = true;   // the entity hit (target) is destroyed
+  int quantity = 1;           // rounds in the burst at this point: each adds its blast levels
+  // Events of another node's round: the munition's name when not a kind of ours (a generic
+  // effect, e.g. "smoke"), warhead and fuse class names ("" = not logged). String literals or
+  // table-owned strings that outlive the tick.
+  const char* munition_name = "";
+  const char* warhead = "";
+  const char* fuse = "";
 };
 
 struct Changes {

@@ -1,0 +1,97 @@
+// Munitions of other simulators (issue 10, defect 3), through the real path: a peer (application
+// 50) sends Detonation PDUs of each warhead class and result into a running node on loopback
+// multicast. On the old node every one of them was our HE round: a 6 m crater and damage.
+// Now (models/munitions.toml, node/munition_codes.hpp): smoke, illumination, practice and
+// small-arms kinetic rounds make no crater and no damage, a dud nothing, an airburst no crater
+// (but its blast), an HE ground impact its crater.
+#include <gtest/gtest.h>
+
+#include "peer_support.hpp"
+
+using nlohmann::json;
+
+namespace {
+
+struct Shot {
+  const char* what;
+  double at_s;                 // scenario time it is sent
+  net::EntityType type;
+  std::uint16_t warhead, fuse, quantity;
+  std::uint8_t result;
+  double x, y, agl;
+  bool on_t1;                  // entity impact on our t1
+  const char* munition;        // expected event fields
+  const char* result_name;
+};
+
+}  // namespace
+
+TEST(FederateMunitions, EachWarheadClassAndResultHasItsEffect) {
+  const auto w = fed::world_of("federate.toml");
+  lan::Procs procs;
+  auto node = fed::start_node(procs, "fed_munitions", "federate.toml", 4.5);
+  net::Session peer(fed::peer_config(node.port));
+  const net::EntityType he_type{2, 8, 225, 2, 14, 1, 0};    // our he_round's type
+  const net::EntityType smoke_type{2, 9, 225, 2, 5, 4, 0};  // battlefield support, 60 mm: not in any table
+  const net::EntityType rifle_type{2, 8, 225, 2, 1, 0, 0};  // a ballistic anti-personnel round
+  // t1 (ours) is parked at (200, 200); he_round: blast 30 m (inner third destroys), crater 6 m.
+  const std::vector<Shot> shots{
+      {"smoke", 0.5, smoke_type, 2000, 1000, 1, 3, 205, 200, 0.2, false, "smoke", "ground_impact"},
+      {"illumination", 0.8, smoke_type, 3000, 2000, 1, 5, 200, 200, 300, false, "illumination", "airburst"},
+      {"practice", 1.1, he_type, 4000, 1000, 1, 1, 200, 200, 1.0, true, "practice", "entity_impact"},
+      {"kinetic", 1.4, rifle_type, 5000, 1000, 30, 1, 200, 200, 1.0, true, "kinetic", "entity_impact"},
+      {"dud", 1.7, he_type, 1000, 1000, 1, 6, 203, 200, 0.2, false, "he_round", "dud"},
+      {"airburst", 2.2, he_type, 1000, 3000, 1, 25, 200, 200, 8.0, false, "he_round", "airburst"},
+      {"he", 2.8, he_type, 1000, 1000, 1, 3, 320, 320, 0.2, false, "he_round", "ground_impact"},
+  };
+  size_t next = 0;
+  while (next < shots.size() && lan::unix_now() < node.start + 4.0) {
+    const Shot& s = shots[next];
+    fed::sleep_until(node.start + s.at_s);
+    net::DetonationPdu d;
+    d.firing_entity_id = peer.entity_id(1);
+    d.target_entity_id = s.on_t1 ? net::EntityId{1, 1, 1} : net::EntityId{};
+    d.exploding_entity_id = peer.entity_id(static_cast<std::uint16_t>(100 + next));
+    d.event_id = {1, 50, static_cast<std::uint16_t>(next + 1)};
+    d.location = fed::ecef(w, s.x, s.y, s.agl);
+    d.descriptor = {s.type, s.warhead, s.fuse, s.quantity, 0};
+    d.detonation_result = s.result;
+    peer.send(d);
+    ++next;
+  }
+  ASSERT_EQ(next, shots.size()) << "the peer fell behind its schedule";
+  ASSERT_EQ(procs.wait(node.pid, 30.0), 0) << lan::read_text(node.out);
+  const auto ev = lan::read_events(node.events);
+
+  const auto dets = fed::of_type(ev, "detonation");
+  ASSERT_EQ(dets.size(), shots.size());
+  double airburst_t = -1;
+  for (size_t i = 0; i < shots.size(); ++i) {
+    SCOPED_TRACE(shots[i].what);
+    EXPECT_EQ(dets[i]["round"], "rd1:50:" + std::to_string(100 + i)) << "in the order sent";
+    EXPECT_EQ(dets[i]["munition"], shots[i].munition);
+    EXPECT_EQ(dets[i]["result"], shots[i].result_name);
+    EXPECT_EQ(dets[i]["quantity"], shots[i].quantity);
+    EXPECT_EQ(dets[i]["target"], shots[i].on_t1 ? "t1" : "");
+    if (std::string(shots[i].what) == "airburst") airburst_t = dets[i]["t"];
+  }
+  EXPECT_EQ(dets[0]["warhead"], "smoke");
+  EXPECT_EQ(dets[1]["fuse"], "timed");
+  EXPECT_EQ(dets[3]["warhead"], "kinetic");
+
+  // One crater: the HE ground impact's, where it landed.
+  const auto craters = fed::of_type(ev, "crater");
+  ASSERT_EQ(craters.size(), 1u) << "smoke, illumination, practice, kinetic, dud and airburst make none";
+  EXPECT_NEAR(craters[0]["point"][0].get<double>(), 320, 0.5);
+  EXPECT_NEAR(craters[0]["point"][1].get<double>(), 320, 0.5);
+  EXPECT_EQ(craters[0]["radius_m"], 6.0);
+
+  // t1 is damaged once: by the HE airburst 8 m above it (blast), not by the rounds before.
+  std::vector<json> t1_damage;
+  for (const auto& d : fed::of_type(ev, "damage"))
+    if (d["object"] == "t1") t1_damage.push_back(d);
+  ASSERT_EQ(t1_damage.size(), 1u) << "only the airburst's blast damages t1";
+  EXPECT_EQ(t1_damage[0]["to_state"], "wreck");
+  EXPECT_EQ(t1_damage[0]["t"], airburst_t);
+  std::filesystem::remove_all(node.dir);
+}
