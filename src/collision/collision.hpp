@@ -23,6 +23,9 @@
 // only the first tick of each contact episode and reuses its buffers (no allocation per tick
 // once warm). Positions in the local frame, metres; speeds m/s; times s unless a "fraction".
 // Non-finite positions or velocities are rejected with std::invalid_argument naming the entity.
+// Threading: detect and respond read a const World; a Detector (its buffers, the contact episodes
+// of last tick) belongs to one thread, which may fan the per-entity work out to workers that
+// write only their own slots. The world is changed only by world::apply of respond's Changes.
 #pragma once
 #include <cstdint>
 #include <string>

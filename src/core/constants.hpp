@@ -1,5 +1,7 @@
-// Every constant taken from the 1991 thesis (Osborne, NPSNET, shared/seed), with its source,
-// plus the DIS 7 Annex C defaults we rely on. Nothing else in src/ writes these numbers inline.
+// Every constant taken from the 1991 thesis (Osborne, NPSNET, shared/seed), with its source.
+// Nothing else in src/ writes these numbers inline. The DIS 7 Annex C network defaults live in
+// net/ (net::annex_c in net/dead_reckoning.hpp), which builds on its own; src/ takes them there.
+// Threading: constants only; core/ holds no state (math, geodesy are pure functions).
 #pragma once
 
 namespace npsnet::thesis {
@@ -67,10 +69,3 @@ inline constexpr double kBounceSpeedKept = 0.5;
 inline constexpr double kFixedHitSpeedKept = 0.6;
 
 }  // namespace npsnet::thesis
-
-namespace npsnet::dis_defaults {  // IEEE 1278.1-2012 Annex C (shared/DIS7-NOTES.md)
-inline constexpr double kHeartbeatS = 5.0;
-inline constexpr double kTimeoutS = 12.0;
-inline constexpr double kPositionThresholdM = 1.0;
-inline constexpr double kOrientationThresholdDeg = 3.0;
-}  // namespace npsnet::dis_defaults

@@ -1,4 +1,5 @@
 // Math types for the node: doubles for world positions, floats where precision allows.
+// Threading: types and pure functions only; core/ holds no state.
 #pragma once
 #include <Eigen/Core>
 #include <Eigen/Geometry>

@@ -5,9 +5,15 @@
 // and meets the terrain by marching along the heightfield; a guided kind (missile) flies at its
 // target entity.
 // Only local, active entities are moved; remote ones come from the network.
+// Threading: step and drive write only the pose, velocity, route leg and fuel of the entity they
+// move; a guided munition reads its target's pose after the vehicles have moved (munitions are
+// stepped after the vehicles, as their indices come later). fire and react_to_fire
+// (autonomous.hpp) read a const world and return changes for world::apply.
 #pragma once
+#include <optional>
 #include <vector>
 
+#include "world/changes.hpp"
 #include "world/world.hpp"
 
 namespace npsnet::dynamics {
@@ -27,10 +33,11 @@ void step(world::World& w, double dt, std::vector<GroundImpact>& impacts);
 // terrain under the corners of its footprint (the intact model's extent).
 void follow_terrain(world::World& w, int e);
 
-// Fires a round of kind `munition` from `shooter` at a point (or an entity when target >= 0,
-// which a missile then tracks). Returns the new munition's entity index, or -1 when the shooter
-// cannot fire (dead, no rounds left). he_round: lowest ballistic arc that reaches the point at
-// the kind's muzzle speed (45 degrees when out of range).
-int fire(world::World& w, int shooter, int munition_kind, Vec3 target_point, int target);
+// Decides a round of kind `munition` fired from `shooter` at a point (or an entity when target >= 0,
+// which a guided kind then tracks); world::apply launches it (takes the round, adds the munition
+// entity). nullopt when the shooter cannot fire (dead, no rounds left). A ballistic kind: lowest
+// arc that reaches the point at the kind's muzzle speed (45 degrees when out of range).
+std::optional<world::Launch> fire(const world::World& w, int shooter, int munition_kind, const Vec3& target_point,
+                                  int target);
 
 }  // namespace npsnet::dynamics

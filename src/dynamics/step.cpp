@@ -177,12 +177,12 @@ void step(world::World& w, double dt, std::vector<GroundImpact>& impacts) {
   }
 }
 
-int fire(world::World& w, int shooter, int munition_kind, const Vec3 target_point, int target) {  // by value: it may point into ents
-  auto& ents = w.ents;
+std::optional<world::Launch> fire(const world::World& w, int shooter, int munition_kind, const Vec3& target_point,
+                                  int target) {
+  const auto& ents = w.ents;
   const world::Kind& sk = w.kinds[ents.kind[shooter]];
-  if (ents.state[shooter] + 1 >= static_cast<int>(sk.states.size()) || ents.rounds[shooter] <= 0) return -1;
+  if (ents.state[shooter] + 1 >= static_cast<int>(sk.states.size()) || ents.rounds[shooter] <= 0) return std::nullopt;
   const world::Kind& mk = w.kinds[munition_kind];
-  ents.rounds[shooter] -= 1;
   const Vec3 muzzle = ents.pos[shooter] + Vec3(0, 0, std::max(1.0, sk.height_m * 0.8));
   Vec3 to = target_point - muzzle;
   const double v0 = kmh2mps(mk.max_speed_kmh);
@@ -198,18 +198,10 @@ int fire(world::World& w, int shooter, int munition_kind, const Vec3 target_poin
     const Vec2 d = horiz < 1e-6 ? heading_to_dir(ents.heading_deg[shooter]) : Vec2(to.head<2>() / horiz);
     vel = Vec3(d.x() * std::cos(theta), d.y() * std::cos(theta), std::sin(theta)) * v0;
   }
-  char id[16];
-  std::snprintf(id, sizeof id, "m%d", static_cast<int>(ents.size()) % 100000000);
-  const int m = ents.add(id, munition_kind, muzzle, static_cast<float>(dir_to_heading(vel.head<2>())),
-                         static_cast<float>(mk.radius_m));
-  ents.vel[m] = vel;
-  ents.target[m] = target;
-  ents.aim[m] = target_point;
-  ents.owner[m] = shooter;
-  ents.snapshots[m] = ents.snapshots[shooter];
-  ents.node[m] = ents.node[shooter];
-  ents.local[m] = ents.local[shooter];
-  return m;
+  world::Launch l;
+  l.shooter = shooter, l.kind = munition_kind, l.target = target;
+  l.muzzle = muzzle, l.vel = vel, l.aim = target_point;
+  return l;
 }
 
 }  // namespace npsnet::dynamics

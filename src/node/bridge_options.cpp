@@ -50,7 +50,7 @@ net::SessionConfig session_config(const BridgeOptions& o) {
 net::DrThresholds dr_thresholds(double timeout_s) {
   net::DrThresholds t;
   t.timeout_s = timeout_s;
-  t.heartbeat_s = std::min(dis_defaults::kHeartbeatS, timeout_s * dis_defaults::kHeartbeatS / dis_defaults::kTimeoutS);
+  t.heartbeat_s = std::min(net::annex_c::kHeartbeatS, timeout_s * net::annex_c::kHeartbeatS / net::annex_c::kTimeoutS);
   return t;
 }
 

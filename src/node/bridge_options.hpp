@@ -18,7 +18,7 @@ struct BridgeOptions {
   std::string iface = "127.0.0.1";           // --iface
   int node = 1;                              // --node: vehicles with node = N are ours
   int exercise = 1, site = 1, app = 1;       // DIS identity (app default = node, set by caller)
-  double timeout_s = dis_defaults::kTimeoutS;  // remote entity timeout, s
+  double timeout_s = net::annex_c::kTimeoutS;  // remote entity timeout, s
   double aoi_cell_m = 0;                     // --aoi: cell size, m; 0 = off (one group)
   int aoi_groups = net::kAoiDefaultMaxGroups;  // --aoi-groups: at most this many cell groups
   int ttl = 1;                               // --ttl: multicast TTL (more than 1 to cross routers)

@@ -62,7 +62,7 @@ int run_command(const RunOptions& opt) {
     return 2;
   }
 #ifdef NPSNET_HAVE_NET
-  double dis_timeout_s = dis_defaults::kTimeoutS;
+  double dis_timeout_s = net::annex_c::kTimeoutS;
   if (net_on || replay_on) {
     if (auto u = net::parse_udp_url(o.net); net_on && !u) {
       std::fprintf(stderr, "--net %s: %s\n", o.net.c_str(), u.error().c_str());

@@ -45,9 +45,18 @@ nlohmann::json Simulation::base(const char* type) const {
   return {{"event", type}, {"t", round3(w_.t)}, {"frame", w_.frame}};
 }
 
+void Simulation::apply_now(const world::Changes& c) {
+  now_applied_.clear();
+  world::apply(w_, c, now_applied_);
+}
+
 int Simulation::fire(int shooter, int munition_kind, const Vec3 point, int target_entity, const std::string target_name) {
-  const int m = dynamics::fire(w_, shooter, munition_kind, point, target_entity);
-  if (m < 0) return -1;
+  const auto launch = dynamics::fire(w_, shooter, munition_kind, point, target_entity);
+  if (!launch) return -1;
+  now_.clear();
+  now_.launches.push_back(*launch);
+  apply_now(now_);
+  const int m = now_applied_.launched.back();
   fired_.push_back(m);
   auto ev = base("fire");
   ev["shooter"] = w_.ents.id[shooter];
@@ -56,23 +65,24 @@ int Simulation::fire(int shooter, int munition_kind, const Vec3 point, int targe
   ev["target"] = target_name;
   ev["point"] = vec(point);
   log_.write(ev);
-  if (target_entity >= 0) threatened(shooter, point, target_entity);
+  if (target_entity >= 0) threatened(shooter, target_entity);
   return m;
 }
 
-void Simulation::threatened(int shooter, const Vec3&, int victim) {
-  const auto r = dynamics::react_to_fire(w_, victim, shooter);
-  if (r != dynamics::Reaction::None) {
-    auto ev = base("autonomous");
-    ev["id"] = w_.ents.id[victim];
-    ev["reaction"] = r == dynamics::Reaction::ReturnFire ? "return_fire" : "flee";
-    ev["shooter"] = shooter >= 0 ? w_.ents.id[shooter] : "";
-    log_.write(ev);
-  }
-  if (r == dynamics::Reaction::ReturnFire) {
-    const int he = w_.kinds.find("he_round");
-    if (he >= 0) fire(victim, he, w_.ents.pos[shooter], shooter, w_.ents.id[shooter]);
-  }
+void Simulation::threatened(int shooter, int victim) {
+  world::EntityChange change;
+  const auto r = dynamics::react_to_fire(w_, victim, shooter, change);
+  if (r == dynamics::Reaction::None) return;
+  now_.clear();
+  now_.entities.push_back(change);
+  apply_now(now_);
+  auto ev = base("autonomous");
+  ev["id"] = w_.ents.id[victim];
+  ev["reaction"] = r == dynamics::Reaction::ReturnFire ? "return_fire" : "flee";
+  ev["shooter"] = shooter >= 0 ? w_.ents.id[shooter] : "";
+  log_.write(ev);
+  if (r == dynamics::Reaction::ReturnFire)  // with its kind's munition (react_to_fire checked it)
+    fire(victim, w_.kinds.find(w_.kinds[w_.ents.kind[victim]].munition), w_.ents.pos[shooter], shooter, w_.ents.id[shooter]);
 }
 
 void Simulation::scheduled_fires() {
@@ -191,12 +201,12 @@ void Simulation::tick() {
   if (before_apply) before_apply(w_, changes_);
   world::apply(w_, changes_, applied_);
   log_changes();
-  // Autonomous vehicles near a detonation they did not cause have been fired upon.
+  // 6. Autonomous vehicles near a detonation they did not cause have been fired upon.
   for (const auto& d : changes_.detonations) {
     const int shooter = d.shooter;
     for (int e = 0; e < static_cast<int>(w_.ents.size()); ++e)
       if (w_.ents.autonomous[e] && e != shooter && (w_.ents.pos[e] - d.point).norm() < dynamics::kThreatRadiusM)
-        threatened(shooter, d.point, e);
+        threatened(shooter, e);
   }
   if (on_tick) on_tick(TickReport{changes_, applied_, fired_});
   log_.flush();

@@ -1,7 +1,21 @@
 // One node's simulation: the fixed-step tick of shared/ARCHITECTURE.md, without I/O pacing.
-//   scheduled fires -> dynamics::step -> collision::detect -> collision::respond (+ detonations)
-//   -> world::apply -> events.
-// Every collision, damage change, fire, detonation and crater goes to the event log.
+// The tick flows one way, in this order:
+//   1. net in (before_step): the bridge mirrors remote entities (their poses, joins, removals)
+//      and queues what other nodes decided (inject / inject_detonation);
+//   2. fire orders (scenario schedule, then the player, before_dynamics): each dynamics::fire
+//      decision and the target's autonomous reaction (dynamics::react_to_fire) is applied by
+//      world::apply at once, in the order decided, and logged;
+//   3. dynamics::step / drive: the integrator moves local entities (poses, velocities only);
+//   4. collision::detect (const world) -> contacts this node decides;
+//   5. collision::respond + injected changes + detonations (impacts, other nodes' rounds) +
+//      aircraft ground contacts -> Changes -> before_apply (imminent snapshots) -> world::apply
+//      -> events;
+//   6. autonomous reactions to this tick's detonations: decided, applied, logged as in 2;
+//   7. on_tick (renderer, snapshots, net out), then the clock advances.
+// Nothing else changes the world. Every collision, damage change, fire, detonation and crater
+// goes to the event log.
+// Threading: a Simulation and its World belong to one thread (the tick's); stages 3 and 4 may
+// fan out to workers that read the world (and write only their own entities in 3).
 #pragma once
 #include <functional>
 #include <vector>
@@ -64,7 +78,8 @@ class Simulation {
 
  private:
   void scheduled_fires();
-  void threatened(int shooter, const Vec3& at, int victim);
+  void threatened(int shooter, int victim);
+  void apply_now(const world::Changes& c);  // stages 2 and 6: one decision, applied at once
   nlohmann::json base(const char* type) const;
   void log_changes();
 
@@ -86,7 +101,8 @@ class Simulation {
   std::vector<dynamics::Crash> crashes_;
   int driven_ = -1;
   std::vector<int> fired_;
-  world::Changes changes_, injected_;
+  world::Changes changes_, injected_, now_;
+  world::Applied now_applied_;
   std::vector<world::DetonationRecord> injected_detonations_;
   world::Applied applied_;
 };

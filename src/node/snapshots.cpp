@@ -20,8 +20,19 @@ render::Hud make_hud(const world::World& w, const world::Entities& ents, int d) 
   hud.speed_kmh = mps2kmh(ents.vel[d].head<2>().norm());
   hud.heading_deg = ents.heading_deg[d], hud.pitch_deg = ents.pitch_deg[d], hud.roll_deg = ents.roll_deg[d];
   hud.rounds = ents.rounds[d], hud.fuel_l = ents.fuel_l[d];
-  hud.label = ents.id[d] + " " + w.kinds[ents.kind[d]].name;
+  // an index keeps its id for the whole run: the live world's (a past copy holds no strings)
+  hud.label = (d < static_cast<int>(w.ents.size()) ? w.ents.id[d] : std::string()) + " " + w.kinds[ents.kind[d]].name;
   return hud;
+}
+
+// Copies what a frame needs (kind, state, pose, velocity, flags, HUD numbers) into `to`, reusing
+// its storage: no strings, no routes (ids stay empty; size() still counts the entities).
+void copy_frame(const world::Entities& from, world::Entities& to) {
+  to.id.resize(from.size());
+  to.kind = from.kind, to.state = from.state, to.pos = from.pos, to.vel = from.vel;
+  to.heading_deg = from.heading_deg, to.pitch_deg = from.pitch_deg, to.roll_deg = from.roll_deg;
+  to.radius_m = from.radius_m, to.active = from.active, to.local = from.local;
+  to.rounds = from.rounds, to.fuel_l = from.fuel_l;
 }
 
 // The first of this node's vehicles that is alive (not a wreck), else the first wreck; -1: none.
@@ -82,7 +93,7 @@ const Snapshots::State* Snapshots::past_state(double t) {
     if (b.t <= t + eps) return &b;
     const State& a = at(k - 1);
     const double f = (t - a.t) / (b.t - a.t);
-    lerp_.ents = a.ents;
+    copy_frame(a.ents, lerp_.ents);
     lerp_.fixed_state = a.fixed_state;  // a state change happens at a tick: a's holds until b
     lerp_.t = t;
     world::Entities& e = lerp_.ents;
@@ -258,7 +269,7 @@ void Snapshots::after_tick(const world::World& w, const world::Changes& c, const
   // buffer this state for later imminent frames (slots reuse their storage)
   State& s = ring_[head_];
   s.t = w.t;
-  s.ents = w.ents;
+  copy_frame(w.ents, s.ents);
   s.fixed_state = w.fixed.state;
   head_ = (head_ + 1) % ring_.size();
   filled_ = std::min(filled_ + 1, ring_.size());

@@ -13,7 +13,8 @@
 // imminent/result pair is taken or skipped whole (both frames counted when the event happens).
 //
 // The imminent frame needs the past. We keep a ring buffer of the last ~0.5 s of world states
-// (entity arrays and fixed-object states, copied into preallocated slots each tick) and render
+// (what a frame needs of the entity arrays, and fixed-object states, copied into preallocated slots
+// each tick: no strings or routes) and render
 // from it, rather than look ahead: looking ahead would mean simulating every tick twice, and on
 // a networked node the future depends on PDUs not yet received. The terrain is not buffered:
 // imminent frames are rendered before this tick's craters are applied (before_apply).

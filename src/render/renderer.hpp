@@ -11,6 +11,8 @@
 // state and their heading/pitch/roll; particle explosions, fire and smoke; optional haze; the
 // HUD of the driven vehicle and a 2D map inset of the whole terrain (entity dots + the driven
 // vehicle's view triangle), both drawn in GL with a bitmap font made in code.
+// Threading: a Renderer and its GL context belong to the thread that made it (the tick's); it
+// reads the World (or a past copy of its entities) only between ticks, never during one.
 #pragma once
 #include <cstdint>
 #include <filesystem>

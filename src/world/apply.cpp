@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cassert>
+#include <cstdio>
 
 #include "world/changes.hpp"
 
@@ -18,6 +19,26 @@ const char* result_name(Result r) {
   }
   return "?";
 }
+
+namespace {
+int launch(World& w, const Launch& l) {
+  auto& ents = w.ents;
+  assert(l.shooter >= 0 && l.shooter < static_cast<int>(ents.size()) && l.kind >= 0 && l.kind < w.kinds.size());
+  ents.rounds[l.shooter] -= 1;
+  char id[16];
+  std::snprintf(id, sizeof id, "m%d", static_cast<int>(ents.size()) % 100000000);
+  const int m = ents.add(id, l.kind, l.muzzle, static_cast<float>(dir_to_heading(l.vel.head<2>())),
+                         static_cast<float>(w.kinds[l.kind].radius_m));
+  ents.vel[m] = l.vel;
+  ents.target[m] = l.target;
+  ents.aim[m] = l.aim;
+  ents.owner[m] = l.shooter;
+  ents.snapshots[m] = ents.snapshots[l.shooter];
+  ents.node[m] = ents.node[l.shooter];
+  ents.local[m] = ents.local[l.shooter];
+  return m;
+}
+}  // namespace
 
 void apply(World& w, const Changes& c, Applied& out) {
   assert(w.valid());
@@ -50,6 +71,9 @@ void apply(World& w, const Changes& c, Applied& out) {
     if (ch.set_vel && ch.vel.head<2>().norm() > 1e-3 && k.mobility != Mobility::Munition)
       ents.heading_deg[e] = static_cast<float>(dir_to_heading(ch.vel.head<2>()));
     if (ch.deactivate) ents.active[e] = 0;
+    if (ch.heading_deg >= 0) ents.heading_deg[e] = ch.heading_deg;
+    if (ch.flee_until >= 0) ents.flee_until[e] = ch.flee_until;
+    if (ch.calm_until >= 0) ents.calm_until[e] = ch.calm_until;
   }
   for (const auto& ch : c.fixed) {
     const int o = ch.object;
@@ -71,6 +95,7 @@ void apply(World& w, const Changes& c, Applied& out) {
       w.fixed.pos[o].z() = w.terrain.height(w.fixed.pos[o].x(), w.fixed.pos[o].y());
     });
   }
+  for (const auto& l : c.launches) out.launched.push_back(launch(w, l));
   assert(w.valid());
 }
 

@@ -1,6 +1,9 @@
-// The only way the world changes after dynamics: a list of changes that collision::respond and
-// collision::detonate produce, applied in one place by world::apply (damage-state swaps, craters,
-// velocity changes, deaths). Also the records the node turns into events.
+// The only way the world changes outside the integrator (dynamics::step / drive move poses): a
+// list of changes that dynamics::fire (launches), dynamics::react_to_fire (autonomous reactions),
+// collision::respond and collision::detonate decide from a const world, applied in one place by
+// world::apply (launches, damage-state swaps, craters, velocity changes, deaths). Also the records
+// the node turns into events. The order of a tick is node/simulation.hpp's.
+// Threading: deciding reads the world only (any number of threads); apply runs alone.
 #pragma once
 #include <string>
 #include <vector>
@@ -25,6 +28,21 @@ struct EntityChange {
   float cruise_mps = -1;      // new wanted speed; -1: unchanged
   Vec3 shift{0, 0, 0};        // separation move (m)
   bool deactivate = false;    // munition spent
+  // autonomous reactions (dynamics/autonomous.hpp); negative: unchanged
+  float heading_deg = -1;     // new compass heading (flee)
+  float flee_until = -1;      // fleeing until this scenario time (s)
+  float calm_until = -1;      // no new reaction before this scenario time (s)
+};
+
+// A round fired (dynamics::fire decides it): apply takes one of the shooter's rounds and adds the
+// munition entity, named "m<entity count>".
+struct Launch {
+  int shooter = -1;
+  int kind = -1;              // munition kind
+  int target = -1;            // entity a guided round tracks, or -1
+  Vec3 muzzle{0, 0, 0};       // start position (m)
+  Vec3 vel{0, 0, 0};          // m/s
+  Vec3 aim{0, 0, 0};          // aim point (m)
 };
 
 struct FixedChange {
@@ -79,8 +97,9 @@ struct Changes {
   std::vector<Crater> craters;
   std::vector<CollisionRecord> collisions;
   std::vector<DetonationRecord> detonations;
+  std::vector<Launch> launches;
   void clear() {
-    entities.clear(), fixed.clear(), craters.clear(), collisions.clear(), detonations.clear();
+    entities.clear(), fixed.clear(), craters.clear(), collisions.clear(), detonations.clear(), launches.clear();
   }
 };
 
@@ -94,10 +113,11 @@ struct Applied {
   std::vector<DamageRecord> damage;
   std::vector<PostRect> terrain_patches;
   std::vector<int> killed;    // entities that became wrecks this tick
-  void clear() { damage.clear(), terrain_patches.clear(), killed.clear(); }
+  std::vector<int> launched;  // the munition entity of each launch, in order
+  void clear() { damage.clear(), terrain_patches.clear(), killed.clear(), launched.clear(); }
 };
 
-// Applies the changes in order; a state never moves backwards (except an owner_state of a remote
+// Applies the changes in order (entities, fixed objects, craters, launches); a state never moves backwards (except an owner_state of a remote
 // entity, which is set as its owner says); a crater lowers the terrain and
 // re-seats fixed objects standing in it. Appends what happened to `out`.
 void apply(World& w, const Changes& c, Applied& out);

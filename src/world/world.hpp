@@ -1,7 +1,10 @@
 // The world a node simulates: terrain, kinds and models, fixed objects with their 125 m
 // gridsquare index, and the moving entities (vehicles and munitions) as contiguous arrays.
 // Entities and fixed objects are referred to by index; nothing holds pointers across ticks.
-// The world is changed in one place, world::apply (changes.hpp), from collision outcomes.
+// The world is changed in one place, world::apply (changes.hpp), from fire orders, reactions and
+// collision outcomes; only the integrator (dynamics::step / drive) writes poses directly.
+// Threading: a World belongs to the tick's thread; during a tick's parallel stages workers read
+// it and write only the entity slots they were given; nothing here locks.
 #pragma once
 #include <algorithm>
 #include <cstdint>

@@ -60,7 +60,7 @@ TEST(Munitions, BallisticRoundMeetsTheTerrainAtTheTarget) {
   const int s = test::add_vehicle(w, "s", "m1a1", 200, 1000, 90, 0);
   const int he = w.kinds.find("he_round");
   const Vec3 target(1700, 1000, w.terrain.height(1700, 1000));
-  const int m = dynamics::fire(w, s, he, target, -1);
+  const int m = test::fire(w, s, he, target, -1);
   ASSERT_GE(m, 0);
   std::vector<dynamics::GroundImpact> imp;
   for (int i = 0; i < 200 && imp.empty(); ++i) dynamics::step(w, 0.1, imp);
@@ -76,7 +76,7 @@ TEST(Munitions, MissileIsGuidedToAMovingTarget) {
   const int h = test::add_vehicle(w, "h", "ah64", 200, 200, 90, 0);
   w.ents.pos[h].z() += 300;
   const int t = test::add_vehicle(w, "t", "m1a1", 1500, 1500, 0, 10);
-  const int m = dynamics::fire(w, h, w.kinds.find("missile"), w.ents.pos[t], t);
+  const int m = test::fire(w, h, w.kinds.find("missile"), w.ents.pos[t], t);
   std::vector<dynamics::GroundImpact> imp;
   double best = 1e9;
   for (int i = 0; i < 100; ++i) {
@@ -94,10 +94,19 @@ TEST(Autonomous, ReturnsFireOrFlees) {
   const int b = test::add_vehicle(w, "b", "hmmwv", 200, 800, 0, 0);  // no rounds
   w.ents.autonomous[a] = w.ents.autonomous[b] = 1;
   w.ents.max_mps[b] = 20;
-  EXPECT_EQ(dynamics::react_to_fire(w, a, shooter), dynamics::Reaction::ReturnFire);
-  EXPECT_EQ(dynamics::react_to_fire(w, b, shooter), dynamics::Reaction::Flee);
-  EXPECT_NEAR(w.ents.heading_deg[b], 0.0, 1e-3);  // directly away from the shooter (north)
-  EXPECT_EQ(dynamics::react_to_fire(w, shooter, a), dynamics::Reaction::None);  // not autonomous
+  world::Changes c;
+  world::EntityChange ch;
+  EXPECT_EQ(dynamics::react_to_fire(w, a, shooter, ch), dynamics::Reaction::ReturnFire);
+  c.entities.push_back(ch);
+  EXPECT_EQ(dynamics::react_to_fire(w, b, shooter, ch), dynamics::Reaction::Flee);
+  c.entities.push_back(ch);
+  EXPECT_NEAR(ch.heading_deg, 0.0, 1e-3);  // directly away from the shooter (north)
+  EXPECT_EQ(dynamics::react_to_fire(w, shooter, a, ch), dynamics::Reaction::None);  // not autonomous
+  EXPECT_EQ(w.ents.calm_until[a], -1.0f);  // deciding changes nothing: apply does
+  world::Applied applied;
+  world::apply(w, c, applied);
+  EXPECT_EQ(dynamics::react_to_fire(w, a, shooter, ch), dynamics::Reaction::None);  // calm for a while
+  EXPECT_NEAR(w.ents.heading_deg[b], 0.0, 1e-3);
   std::vector<dynamics::GroundImpact> imp;
   for (int i = 0; i < 10; ++i) dynamics::step(w, 0.1, imp);
   EXPECT_GT(w.ents.pos[b].y(), 800 + 15);

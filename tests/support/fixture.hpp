@@ -5,6 +5,8 @@
 #include <fstream>
 #include <string>
 
+#include "dynamics/dynamics.hpp"
+#include "world/changes.hpp"
 #include "world/pose.hpp"
 #include "world/scenario.hpp"
 
@@ -43,6 +45,17 @@ inline int add_fixed(world::World& w, const std::string& id, const std::string& 
   const int k = w.kinds.find(kind);
   w.fixed.add(id, k, Vec3(x, y, w.terrain.height(x, y)), 0.0f, static_cast<float>(w.kinds[k].radius_m));
   return static_cast<int>(w.fixed.size() - 1);
+}
+
+// dynamics::fire decided and applied (as the node's tick does): the munition's index, or -1.
+inline int fire(world::World& w, int shooter, int munition_kind, const Vec3& target_point, int target) {
+  const auto l = dynamics::fire(w, shooter, munition_kind, target_point, target);
+  if (!l) return -1;
+  world::Changes c;
+  c.launches.push_back(*l);
+  world::Applied a;
+  world::apply(w, c, a);
+  return a.launched.at(0);
 }
 
 inline void index_fixed(world::World& w, bool home_only = true) {

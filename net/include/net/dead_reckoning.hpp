@@ -28,12 +28,21 @@ enum class DrAlgorithm : std::uint8_t {
 
 inline constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
+// IEEE 1278.1-2012 Annex C defaults (shared/DIS7-NOTES.md): the one place these numbers live;
+// src/ takes them from here.
+namespace annex_c {
+inline constexpr double kHeartbeatS = 5.0;                // Entity State heartbeat, s
+inline constexpr double kTimeoutS = 12.0;                 // remote entity timeout, s
+inline constexpr double kPositionThresholdM = 1.0;        // dead-reckoning position error, m
+inline constexpr double kOrientationThresholdDeg = 3.0;   // dead-reckoning orientation error, deg
+}  // namespace annex_c
+
 // Annex C defaults; every threshold is configurable.
 struct DrThresholds {
-  double position_threshold_m = 1.0;
-  double orientation_threshold_rad = 3.0 * kDegToRad;
-  double heartbeat_s = 5.0;
-  double timeout_s = 12.0;  // remote entity dropped after this long without an update
+  double position_threshold_m = annex_c::kPositionThresholdM;
+  double orientation_threshold_rad = annex_c::kOrientationThresholdDeg * kDegToRad;
+  double heartbeat_s = annex_c::kHeartbeatS;
+  double timeout_s = annex_c::kTimeoutS;  // remote entity dropped after this long without an update
   double blend_s = 0.5;     // remote pose converges to a corrected track over this time
 };
 
