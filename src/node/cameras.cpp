@@ -22,9 +22,13 @@ render::Camera player_camera(const world::World& w, const world::Entities& ents,
   switch (mode) {
     case input::CameraMode::Driver: {
       // the driver's station: ahead of the centre, near the hull top (model space: y forward, z up)
-      const Vec3 station(0, 0.3 * static_cast<double>(m.bbox_max.y()), 0.55 * height);
+      // The vehicle itself is not drawn (its hull and gun would fill the view at arm's length);
+      // the view rolls and pitches with it.
+      const Vec3 station(0, 0.3 * static_cast<double>(m.bbox_max.y()), 0.75 * height);
       c.eye = pos + rot * station;
       c.target = c.eye + rot * Vec3(0, 100, 0);
+      c.up = rot * Vec3(0, 0, 1);
+      c.hide_entity = e;
       break;
     }
     case input::CameraMode::Chase: {

@@ -1,6 +1,7 @@
 // The player's cameras around the vehicle `e` (shared/ARCHITECTURE.md, "Player"), in metres:
 //  driver: the eye inside the vehicle (the thesis's Figure A.1), at its driver's station, looking
-//          along its heading and pitch;
+//          along its heading and pitch, the frame rolled with it; the vehicle itself not drawn
+//          (Camera::hide_entity);
 //  chase:  behind and above it, looking past it;
 //  orbit:  around it at `orbit_deg` (0 = behind, + clockwise seen from above) and `orbit_m`;
 //  map:    straight down from kMapCameraHeightM over it, north up.

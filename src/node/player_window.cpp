@@ -32,7 +32,7 @@ bool PlayerWindow::present(const Simulation& sim) {
   if (player_ && player_->applied_device_wall_s() >= 0 && pending_event_s_ < 0) pending_event_s_ = player_->applied_device_wall_s();
   const bool moved = (cam.eye - last_.eye).norm() > 1e-6 || (cam.target - last_.target).norm() > 1e-6;
   last_ = cam;
-  const bool open = snaps_.present(w, cam);
+  const bool open = snaps_.present(w, cam, input::camera_name(player_ ? player_->camera() : input::CameraMode::Driver));
   if (pending_event_s_ >= 0 && moved) {
     const double swapped = input::steady_now_s();
     if (reported_++ < kMaxLatencyReports)

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "node/cameras.hpp"
+#include "node/result_camera.hpp"
 #include "render/renderer.hpp"
 #include "world/pose.hpp"
 
@@ -13,8 +14,9 @@ namespace npsnet::node {
 
 namespace {
 // The HUD of the driven vehicle `d` in entity arrays `ents` (the world's own or a past copy).
-render::Hud make_hud(const world::World& w, const world::Entities& ents, int d) {
+render::Hud make_hud(const world::World& w, const world::Entities& ents, int d, const std::string& camera) {
   render::Hud hud;
+  hud.camera = camera;
   if (d < 0 || d >= static_cast<int>(ents.size())) return hud;
   hud.show = true;
   hud.speed_kmh = mps2kmh(ents.vel[d].head<2>().norm());
@@ -135,17 +137,15 @@ bool Snapshots::budget(const world::World& w, int n, const std::vector<std::stri
   return false;
 }
 
-void Snapshots::write(const world::World& w, const std::string& name, const State* past, const Vec3& eye,
-                      const Vec3& target, double t, int hud_entity, const nlohmann::json& extra) {
+void Snapshots::write(const world::World& w, const std::string& name, const State* past, const render::Camera& cam,
+                      double t, const std::string& mode, int hud_entity, const nlohmann::json& extra) {
   render::SceneView v;
   v.world = &w;
   v.ents = past ? &past->ents : &w.ents;
   v.fixed_state = past ? &past->fixed_state : &w.fixed.state;
   v.t = t;
   v.driven = hud_entity == kDriven ? driven(w) : hud_entity;
-  const render::Hud hud = make_hud(w, *v.ents, v.driven);
-  render::Camera cam;
-  cam.eye = eye, cam.target = target;
+  const render::Hud hud = make_hud(w, *v.ents, v.driven, mode);
   r_->render(v, cam, hud, true);
   const auto file = opt_.dir / name;
   std::string why;
@@ -167,7 +167,7 @@ void Snapshots::before_apply(const world::World& w, const world::Changes& c) {
     if (!budget(w, 2, {base + "-imminent.png", base + "-result.png"})) return;
     const render::Camera cam = render::look_at_pair(w, pa, pb);
     const State* past = past_state(w.t - kImminentLeadS);
-    write(w, base + "-imminent.png", past, cam.eye, cam.target, past ? past->t : w.t, a);
+    write(w, base + "-imminent.png", past, cam, past ? past->t : w.t, "outside", a);
     more.due_t = w.t + kResultDelayS, more.base = base, more.eye = cam.eye, more.target = cam.target, more.subject = a;
     pending_.push_back(more);
   };
@@ -193,8 +193,18 @@ void Snapshots::before_apply(const world::World& w, const world::Changes& c) {
     Vec2 dir = (d.point - ents.pos[shooter]).head<2>();
     dir = dir.norm() > 1e-6 ? Vec2(dir.normalized()) : Vec2(1, 0);
     const Vec3 side(-dir.y() * 20, dir.x() * 20, 0);
-    const Vec3 pa = d.target >= 0 ? world::entity_centre(w, d.target) - side : d.point - side;
-    const Vec3 pb = d.target >= 0 ? world::entity_centre(w, d.target) + side : d.point + side;
+    Vec3 pa = d.target >= 0 ? world::entity_centre(w, d.target) - side : d.point - side;
+    Vec3 pb = d.target >= 0 ? world::entity_centre(w, d.target) + side : d.point + side;
+    // A fixed object the blast changed (a tree to a stump): framed beside the point of impact,
+    // so the fireball does not stand in front of it.
+    if (d.target < 0 && d.kind >= 0) {
+      const double blast = w.kinds[d.kind].blast_radius_m;
+      for (const auto& f : c.fixed)
+        if (f.object >= 0 && (w.fixed.pos[f.object] - d.point).head<2>().norm() <= blast + world::fixed_radius(w, f.object)) {
+          pa = d.point, pb = world::fixed_centre(w, f.object);
+          break;
+        }
+    }
     snap("detonation", shooter, d.round, d.target >= 0 ? ents.id[d.target] : "ground", pa, pb, Pending{});
   }
 }
@@ -214,19 +224,13 @@ void Snapshots::after_tick(const world::World& w, const world::Changes& c, const
       const Pending& p = pending_[i];
       render::Camera cam;
       cam.eye = p.eye, cam.target = p.target;
-      if (p.a >= 0 && p.b_fixed) {  // the object it changed, close, from the side and above
-        const Vec3 o = w.fixed.pos[p.b];
-        const Vec2 f = heading_to_dir(w.ents.heading_deg[p.a]);
-        const Vec2 side(-f.y(), f.x());
-        const double d = std::max(14.0, 2.5 * world::fixed_radius(w, p.b));
-        cam.target = o + Vec3(0, 0, std::min(2.0, 0.3 * world::fixed_radius(w, p.b)));
-        cam.eye = o + Vec3(side.x(), side.y(), 0) * d - Vec3(f.x(), f.y(), 0) * (0.5 * d);
-        cam.eye.z() = std::max(o.z(), w.terrain.height(cam.eye.x(), cam.eye.y())) + 0.8 * d;
+      if (p.a >= 0 && p.b_fixed) {  // the object it changed, close, from where the vehicle hides none of it
+        cam = changed_object_camera(w, p.a, p.b);
       } else if (p.a >= 0) {  // framed again from where the pair is now
         const Vec3 pb = p.b >= 0 ? world::entity_centre(w, p.b) : p.b_point;
         cam = render::look_at_pair(w, world::entity_centre(w, p.a), pb);
       }
-      write(w, p.base + "-result.png", nullptr, cam.eye, cam.target, w.t, p.subject);
+      write(w, p.base + "-result.png", nullptr, cam, w.t, "outside", p.subject);
       pending_.erase(pending_.begin() + static_cast<long>(i));
     } else {
       ++i;
@@ -238,7 +242,7 @@ void Snapshots::after_tick(const world::World& w, const world::Changes& c, const
     const std::string name = d >= 0 ? "0000-view-" + sanitize(w.ents.id[d]) + "-driver.png" : "";
     if (d >= 0 && budget(w, 1, {name})) {
       const auto cam = player_camera(w, w.ents, d, input::CameraMode::Driver);
-      write(w, name, nullptr, cam.eye, cam.target, w.t, d);
+      write(w, name, nullptr, cam, w.t, "driver", d);
     }
   }
   if (opt_.every_s > 0 && w.t + 1e-9 >= next_periodic_) {
@@ -261,7 +265,7 @@ void Snapshots::after_tick(const world::World& w, const world::Changes& c, const
       char name[64];
       std::snprintf(name, sizeof name, "%04d-periodic-t%07.1f.png", ++counter_, w.t);
       if (budget(w, 1, {name}))
-        write(w, name, nullptr, cam.eye, cam.target, w.t, alive ? d : -1,
+        write(w, name, nullptr, cam, w.t, alive ? "driver" : "outside", alive ? d : -1,
               {{"camera", alive ? "driver" : "outside"}, {"vehicle", w.ents.id[d]}});
     }
     next_periodic_ += opt_.every_s;
@@ -275,11 +279,11 @@ void Snapshots::after_tick(const world::World& w, const world::Changes& c, const
   filled_ = std::min(filled_ + 1, ring_.size());
 }
 
-bool Snapshots::present(const world::World& w, const render::Camera& cam) {
+bool Snapshots::present(const world::World& w, const render::Camera& cam, const std::string& mode) {
   const int d = driven(w);
   render::SceneView v;
   v.world = &w, v.t = w.t, v.driven = d;
-  const render::Hud hud = make_hud(w, w.ents, d);
+  const render::Hud hud = make_hud(w, w.ents, d, mode);
   r_->render(v, cam, hud, true);
   return !r_->window_should_close();
 }

@@ -61,9 +61,9 @@ class Snapshots {
   void before_apply(const world::World& w, const world::Changes& c);
   // After apply: effects, terrain patches, due result frames, periodic frames, buffer the state.
   void after_tick(const world::World& w, const world::Changes& c, const world::Applied& a);
-  // The window frame (with --window): `cam`, with the HUD of the driven vehicle. False once the
-  // window is closed.
-  bool present(const world::World& w, const render::Camera& cam);
+  // The window frame (with --window): `cam`, with the HUD of the driven vehicle showing camera
+  // mode `mode`. False once the window is closed.
+  bool present(const world::World& w, const render::Camera& cam, const std::string& mode);
   // The player's vehicle (-1: none; the first vehicle of this node then stands in): periodic
   // frames, the start view and the window's HUD follow it.
   void set_driven(int e) { driven_ = e; }
@@ -90,8 +90,9 @@ class Snapshots {
     Vec3 b_point{0, 0, 0};
   };
   static constexpr int kDriven = -2;  // hud_entity: the driven vehicle's HUD
-  void write(const world::World& w, const std::string& name, const State* past, const Vec3& eye,
-             const Vec3& target, double t, int hud_entity = kDriven, const nlohmann::json& extra = {});
+  // Renders `cam` (the HUD of hud_entity, showing camera mode `mode`) and writes PNG `name`.
+  void write(const world::World& w, const std::string& name, const State* past, const render::Camera& cam, double t,
+             const std::string& mode, int hud_entity = kDriven, const nlohmann::json& extra = {});
   int driven(const world::World& w) const;
   int driven_ = -1;
   bool start_view_ = false;

@@ -26,6 +26,7 @@ using NpsPfnTexSubImage2D = void(APIENTRYP)(GLenum target, GLint level, GLint xo
   X(PFNGLENABLEPROC, Enable)                                            \
   X(PFNGLDISABLEPROC, Disable)                                          \
   X(PFNGLDEPTHMASKPROC, DepthMask)                                      \
+  X(PFNGLCOLORMASKPROC, ColorMask)                                      \
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                                      \
   X(PFNGLBLENDFUNCPROC, BlendFunc)                                      \
   X(PFNGLCULLFACEPROC, CullFace)                                        \

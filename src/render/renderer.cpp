@@ -9,6 +9,7 @@
 #include "render/effects.hpp"
 #include "render/gl_api.hpp"
 #include "render/gl_context.hpp"
+#include "render/hud_map.hpp"
 #include "render/model_meshes.hpp"
 #include "render/overlay.hpp"
 #include "render/shader.hpp"
@@ -29,16 +30,11 @@ constexpr float kSkyZenith[3] = {0.33f, 0.53f, 0.82f};
 constexpr int kMinOverlayW = 64, kMinOverlayH = 48;
 constexpr double kWaterCellM = 200.0;      // water grid cell (haze is computed per vertex)
 constexpr int kCraterSegments = 16;        // crater decal: segments around
+constexpr float kGhostAlpha = 0.35f;       // opacity of a see-through vehicle (Camera::ghost_entity)
 
 void check_gl(const char* where) {
   const GLenum e = gl::GetError();
   if (e != GL_NO_ERROR) throw std::runtime_error(std::string("render: ") + gl::error_name(e) + " in " + where);
-}
-
-std::string fmt(const char* f, double a) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, a);
-  return b;
 }
 
 }  // namespace
@@ -77,8 +73,7 @@ struct Renderer::Impl {
 
   void build_blocks();
   int model_for(int kind, int state) const;
-  void draw_scene(const SceneView& v, const ViewMath& vm);
-  void draw_overlay(const SceneView& v, const Camera& cam, const ViewMath& vm, const Hud& hud, bool map_inset);
+  void draw_scene(const SceneView& v, const ViewMath& vm, const Camera& cam);
 };
 
 int Renderer::Impl::model_for(int kind, int state) const {
@@ -293,7 +288,7 @@ void Renderer::add_crater(const Vec3& at, double radius_m, double t) {
                  p.crater_verts.data(), GL_STATIC_DRAW);
 }
 
-void Renderer::Impl::draw_scene(const SceneView& v, const ViewMath& vm) {
+void Renderer::Impl::draw_scene(const SceneView& v, const ViewMath& vm, const Camera& cam) {
   const world::World& w = *world;
   const float fog_density = opt.fog && opt.visibility_m > 0 ? static_cast<float>(1.0 / opt.visibility_m) : 0.0f;
   // beyond this the haze leaves < 1 % of a colour: nothing there is drawn
@@ -373,19 +368,27 @@ void Renderer::Impl::draw_scene(const SceneView& v, const ViewMath& vm) {
   stats.blocks_visible = bv;
   stats.blocks_culled = bc;
   const world::Entities& e = v.ents ? *v.ents : w.ents;
+  const auto entity_instance = [&](size_t i) {
+    return Instance{static_cast<float>(e.pos[i].x()), static_cast<float>(e.pos[i].y()), static_cast<float>(e.pos[i].z()),
+                    static_cast<float>(deg2rad(e.heading_deg[i])), static_cast<float>(deg2rad(e.pitch_deg[i])),
+                    static_cast<float>(deg2rad(e.roll_deg[i])), 1, 0};
+  };
+  int ghost_model = -1;
   for (size_t i = 0; i < e.size(); ++i) {
-    if (i < e.active.size() && !e.active[i]) continue;
+    if ((i < e.active.size() && !e.active[i]) || static_cast<int>(i) == cam.hide_entity) continue;
     const int m = model_for(e.kind[i], e.state[i]);
     if (m < 0 || !e.pos[i].allFinite()) continue;
+    if (static_cast<int>(i) == cam.ghost_entity) {
+      ghost_model = m;
+      continue;
+    }
     const float r = model_radius[static_cast<size_t>(m)];
     const double d = (e.pos[i] - vm.eye).norm();
     if (d > simple_k * kEntityLodBoost * r || d > max_dist + r || !vm.sphere_visible(e.pos[i], r)) continue;
-    meshes->add(m, d > full_k * kEntityLodBoost * r,
-                {static_cast<float>(e.pos[i].x()), static_cast<float>(e.pos[i].y()), static_cast<float>(e.pos[i].z()),
-                 static_cast<float>(deg2rad(e.heading_deg[i])), static_cast<float>(deg2rad(e.pitch_deg[i])),
-                 static_cast<float>(deg2rad(e.roll_deg[i])), 1, 0});
+    meshes->add(m, d > full_k * kEntityLodBoost * r, entity_instance(i));
   }
   common(*object_prog);
+  gl::Uniform1f(object_prog->loc("u_alpha"), 1.0f);
   gl::Enable(GL_CULL_FACE);
   gl::CullFace(GL_BACK);
   gl::FrontFace(GL_CCW);
@@ -417,6 +420,25 @@ void Renderer::Impl::draw_scene(const SceneView& v, const ViewMath& vm) {
     gl::DrawArrays(GL_TRIANGLES, 0, water_vertices);
   }
 
+  // the see-through vehicle (Camera::ghost_entity): its nearest faces only (depth first), blended
+  if (ghost_model >= 0) {
+    meshes->clear();
+    meshes->add(ghost_model, false, entity_instance(static_cast<size_t>(cam.ghost_entity)));
+    common(*object_prog);
+    gl::Enable(GL_CULL_FACE);
+    gl::ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    ObjectDrawStats gs;
+    meshes->draw(gs);
+    gl::ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl::DepthMask(GL_FALSE);
+    gl::BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    gl::Uniform1f(object_prog->loc("u_alpha"), kGhostAlpha);
+    meshes->draw(gs);
+    gl::Uniform1f(object_prog->loc("u_alpha"), 1.0f);
+    gl::DepthMask(GL_TRUE);
+    gl::Disable(GL_CULL_FACE);
+  }
+
   // particles: premultiplied alpha, no depth writes
   const auto& parts = effects.particles(v.t);
   stats.particles = static_cast<int>(parts.size());
@@ -441,87 +463,6 @@ void Renderer::Impl::draw_scene(const SceneView& v, const ViewMath& vm) {
   gl::BindVertexArray(0);
 }
 
-void Renderer::Impl::draw_overlay(const SceneView& v, const Camera& cam, const ViewMath& vm, const Hud& hud,
-                                  bool map_inset) {
-  const world::World& w = *world;
-  const int W = opt.width, H = opt.height;
-  const float s = static_cast<float>(std::max(1, static_cast<int>(std::lround(H / 300.0))));  // font pixel size
-  overlay->begin(W, H);
-  const Rgba panel{0.0f, 0.0f, 0.0f, 0.55f}, white{1, 1, 1, 1}, amber{1.0f, 0.78f, 0.25f, 1};
-  const world::Entities& e = v.ents ? *v.ents : w.ents;
-  const bool driven_ok = v.driven >= 0 && static_cast<size_t>(v.driven) < e.size();
-  // scenario clock, top-left
-  const std::string clock = "T " + fmt("%.1f", v.t) + " S";
-  overlay->rect(4 * s, 4 * s, (static_cast<float>(clock.size()) * 6 + 4) * s, 11 * s, panel);
-  overlay->text(6 * s, 6 * s, s, clock, white);
-  if (hud.show) {
-    const std::string lines[4] = {
-        hud.label.empty() ? std::string("VEHICLE") : hud.label,
-        "SPD " + fmt("%6.1f", hud.speed_kmh) + " KM/H  HDG " + fmt("%05.1f", wrap360(hud.heading_deg)),
-        "PITCH " + fmt("%+5.1f", hud.pitch_deg) + "  ROLL " + fmt("%+5.1f", hud.roll_deg),
-        "ROUNDS " + std::to_string(hud.rounds) + "  FUEL " + fmt("%.0f", hud.fuel_l) + " L"};
-    size_t longest = 0;
-    for (const auto& l : lines) longest = std::max(longest, l.size());
-    const float ph = (4 * 10 + 4) * s, pw = (static_cast<float>(longest) * 6 + 6) * s;
-    const float x0 = 4 * s, y0 = static_cast<float>(H) - ph - 4 * s;
-    overlay->rect(x0, y0, pw, ph, panel);
-    for (int k = 0; k < 4; ++k) overlay->text(x0 + 3 * s, y0 + (3 + 10 * k) * s, s, lines[k], k == 0 ? amber : white);
-  }
-  if (map_inset) {
-    const float side = std::floor(std::min(W, H) * 0.32f);
-    const float mx = static_cast<float>(W) - side - 6 * s, my = 6 * s;
-    const double TW = w.terrain.width_m(), TD = w.terrain.depth_m();
-    const float aspect = static_cast<float>(TW / std::max(TD, 1.0));
-    const float mw = aspect >= 1 ? side : side * aspect, mh = aspect >= 1 ? side / aspect : side;
-    overlay->rect(mx - 2, my - 2, mw + 4, mh + 4, {0, 0, 0, 0.8f});
-    overlay->map(mx, my, mw, mh);
-    const auto to_map = [&](const Vec3& p, float& x, float& y) {
-      x = mx + static_cast<float>(std::clamp(p.x() / TW, 0.0, 1.0)) * mw;
-      y = my + static_cast<float>(1.0 - std::clamp(p.y() / TD, 0.0, 1.0)) * mh;
-    };
-    const float dot = std::max(2.0f, s * 1.5f);
-    for (size_t i = 0; i < e.size(); ++i) {
-      if (i < e.active.size() && !e.active[i]) continue;
-      if (static_cast<int>(i) == v.driven || !e.pos[i].allFinite()) continue;
-      float x, y;
-      to_map(e.pos[i], x, y);
-      const int k = e.kind[i];
-      Rgba c{0.2f, 0.55f, 1.0f, 1};  // local vehicles
-      if (k >= 0 && k < w.kinds.size()) {
-        const auto& kind = w.kinds[k];
-        if (kind.mobility == world::Mobility::Munition) c = {1.0f, 0.95f, 0.2f, 1};
-        else if (e.state[i] + 1u >= kind.states.size() && kind.states.size() > 1) c = {0.05f, 0.05f, 0.05f, 1};
-        else if (i < e.local.size() && !e.local[i]) c = {1.0f, 0.3f, 0.2f, 1};
-      }
-      overlay->rect(x - dot / 2, y - dot / 2, dot, dot, c);
-    }
-    // the driven vehicle's view triangle (the camera's horizontal field of view, out to the haze)
-    Vec3 apex = vm.eye;
-    double heading = dir_to_heading(Vec2(vm.forward.x(), vm.forward.y()));
-    if (driven_ok) {
-      apex = e.pos[static_cast<size_t>(v.driven)];
-      heading = e.heading_deg[static_cast<size_t>(v.driven)];
-    }
-    const double half = rad2deg(std::atan(vm.tan_half_fov_y * vm.aspect));
-    const double reach = opt.fog ? 2.0 * opt.visibility_m : 0.15 * std::max(TW, TD);
-    float ax, ay, lx, ly, rx, ry;
-    to_map(apex, ax, ay);
-    const Vec2 dl = heading_to_dir(heading - half), dr = heading_to_dir(heading + half);
-    to_map(apex + Vec3(dl.x(), dl.y(), 0) * reach, lx, ly);
-    to_map(apex + Vec3(dr.x(), dr.y(), 0) * reach, rx, ry);
-    overlay->triangle(ax, ay, lx, ly, rx, ry, {1.0f, 1.0f, 1.0f, 0.22f});
-    overlay->line(ax, ay, lx, ly, {1, 1, 1, 0.9f});
-    overlay->line(ax, ay, rx, ry, {1, 1, 1, 0.9f});
-    overlay->line(lx, ly, rx, ry, {1, 1, 1, 0.5f});
-    if (driven_ok) {
-      overlay->rect(ax - dot, ay - dot, 2 * dot, 2 * dot, {0, 0, 0, 1});
-      overlay->rect(ax - dot + 1, ay - dot + 1, 2 * dot - 2, 2 * dot - 2, white);
-    }
-    (void)cam;
-  }
-  overlay->end();
-}
-
 void Renderer::render(const SceneView& view, const Camera& cam, const Hud& hud, bool map_inset) {
   Impl& p = *p_;
   if (view.world && view.world != p.world)
@@ -530,12 +471,13 @@ void Renderer::render(const SceneView& view, const Camera& cam, const Hud& hud, 
   gl::BindFramebuffer(GL_FRAMEBUFFER, p.fbo);
   gl::Viewport(0, 0, p.opt.width, p.opt.height);
   p.stats = {};
-  const ViewMath vm = make_view(cam.eye, cam.target, cam.fov_y_deg, p.opt.width, p.opt.height);
+  const ViewMath vm = make_view(cam.eye, cam.target, cam.fov_y_deg, p.opt.width, p.opt.height, cam.up);
   gl::ClearColor(kSkyHorizon[0], kSkyHorizon[1], kSkyHorizon[2], 1);
   gl::Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  if (cam.eye.allFinite() && cam.target.allFinite()) p.draw_scene(view, vm);
+  if (cam.eye.allFinite() && cam.target.allFinite()) p.draw_scene(view, vm, cam);
   if ((map_inset || hud.show) && p.opt.width >= kMinOverlayW && p.opt.height >= kMinOverlayH)
-    p.draw_overlay(view, cam, vm, hud, map_inset);
+    draw_hud_and_map(*p.overlay, *p.world, view, vm, hud, map_inset,
+                     p.opt.fog ? 2.0 * p.opt.visibility_m : 0.15 * std::max(p.world->terrain.width_m(), p.world->terrain.depth_m()));
   gl::Finish();
   check_gl("render");
   p.ctx->present(p.fbo, p.opt.width, p.opt.height);

@@ -39,6 +39,10 @@ struct RenderOptions {
 struct Camera {
   Vec3 eye{0, 0, 0}, target{0, 1, 0};
   double fov_y_deg = 50;  // vertical field of view
+  Vec3 up{0, 0, 1};       // the frame's up is this made square to the line of sight (roll)
+  int hide_entity = -1;   // an entity not drawn: the vehicle the eye sits in (driver camera)
+  int ghost_entity = -1;  // an entity drawn see-through (its nearest faces, 35 % opaque): a
+                          // vehicle standing on what the frame is about
 };
 
 struct Hud {
@@ -46,7 +50,8 @@ struct Hud {
   double speed_kmh = 0, heading_deg = 0, pitch_deg = 0, roll_deg = 0;
   int rounds = 0;
   double fuel_l = 0;
-  std::string label;  // e.g. "TANK1 M1A1"
+  std::string label;   // e.g. "TANK1 M1A1"
+  std::string camera;  // the camera mode shown ("driver", "chase", "orbit", "map", "outside"); "" = none
 };
 
 // What to draw. ents / fixed_state may be a past copy (a ring buffer of world states) or the

@@ -5,7 +5,7 @@
 
 namespace npsnet::render {
 
-ViewMath make_view(const Vec3& eye, const Vec3& target, double fov_y_deg, int width, int height) {
+ViewMath make_view(const Vec3& eye, const Vec3& target, double fov_y_deg, int width, int height, const Vec3& up) {
   ViewMath v;
   v.eye = eye;
   v.width = std::max(1, width);
@@ -13,7 +13,8 @@ ViewMath make_view(const Vec3& eye, const Vec3& target, double fov_y_deg, int wi
   Vec3 f = target - eye;
   if (!(f.norm() > 1e-9) || !f.allFinite()) f = Vec3(0, 1, 0);
   f.normalize();
-  Vec3 r = f.cross(Vec3(0, 0, 1));
+  Vec3 r = f.cross(up.allFinite() ? up : Vec3(0, 0, 1));
+  if (r.norm() < 1e-6) r = f.cross(Vec3(0, 0, 1));
   if (r.norm() < 1e-6) r = f.cross(Vec3(0, 1, 0));  // looking straight up or down
   r.normalize();
   const Vec3 u = r.cross(f);

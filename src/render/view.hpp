@@ -31,7 +31,10 @@ struct ViewMath {
 };
 
 // eye == target or a degenerate fov are corrected (forward defaults to +y, fov clamped 1..170 deg).
-ViewMath make_view(const Vec3& eye, const Vec3& target, double fov_y_deg, int width, int height);
+// `up`: the frame's up direction before it is made square to the line of sight (a rolled
+// vehicle's roof); along the line of sight or not finite, +z is used.
+ViewMath make_view(const Vec3& eye, const Vec3& target, double fov_y_deg, int width, int height,
+                   const Vec3& up = Vec3(0, 0, 1));
 
 // Window pixel of a world point (x right, y down, top-left origin); false when behind the camera.
 bool project_to_pixel(const ViewMath& v, const Vec3& p, double& px, double& py);

@@ -140,7 +140,7 @@ int main(int argc, char** argv) {
     if (driven >= 0) {
       const auto& kind = w.kind_of_entity(0);
       hud = {true, mps2kmh(w.ents.cruise_mps[0]), w.ents.heading_deg[0], w.ents.pitch_deg[0], w.ents.roll_deg[0],
-             w.ents.rounds[0], w.ents.fuel_l[0], w.ents.id[0] + " " + kind.name};
+             w.ents.rounds[0], w.ents.fuel_l[0], w.ents.id[0] + " " + kind.name, "outside"};
     }
     if (fps_frames > 0) {
       if (driven < 0) throw std::runtime_error("--fps needs a vehicle in the scenario");
