@@ -9,7 +9,8 @@ PKGS=(build-essential cmake pkg-config git
   libosmesa6-dev libgl-dev libglfw3-dev xvfb xauth libspnav-dev xdotool x11-utils imagemagick
   libgtest-dev libgmock-dev libbenchmark-dev libbullet-dev libfcl-dev gnuplot-nox
   gdal-bin python3-gdal python3-numpy
-  tshark iproute2 smcroute libpcap-dev)
+  tshark iproute2 smcroute libpcap-dev
+  clang libclang-rt-14-dev)  # clang + libFuzzer: scripts/fuzz.sh
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Every test: install, build, run ctest; then the same tests under AddressSanitizer +
-# UndefinedBehaviorSanitizer (skip that part with NPSNET_NO_SANITIZE=1).
+# UndefinedBehaviorSanitizer (skip that part with NPSNET_NO_SANITIZE=1); then each libFuzzer
+# target from its seeds, a repeatable run of NPSNET_FUZZ_RUNS inputs (default 3000) capped at
+# NPSNET_FUZZ_SECONDS (default 15) each (skip with NPSNET_NO_FUZZ=1).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -13,4 +15,7 @@ if [ "${NPSNET_NO_SANITIZE:-0}" != "1" ]; then
   bash scripts/build.sh build-asan -DNPSNET_SANITIZE=ON -DNPSNET_BENCH=OFF
   (cd build-asan && ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 \
      ctest --output-on-failure -j2 --timeout 900)
+fi
+if [ "${NPSNET_NO_FUZZ:-0}" != "1" ]; then
+  NPSNET_FUZZ_RUNS="${NPSNET_FUZZ_RUNS:-3000}" bash scripts/fuzz.sh "${NPSNET_FUZZ_SECONDS:-15}"
 fi

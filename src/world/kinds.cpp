@@ -5,6 +5,7 @@
 
 #include "core/constants.hpp"
 #include "world/limits.hpp"
+#include "world/text_file.hpp"
 #include "world/toml_util.hpp"
 
 namespace npsnet::world {
@@ -80,8 +81,13 @@ void read_handling(TomlReader& r, const toml::table& t, const std::string& p, in
 }  // namespace
 
 KindTable KindTable::load(const std::filesystem::path& file, ModelLibrary& models) {
+  if (!std::filesystem::exists(file)) throw InputError(file.string(), 0, "file", "file not found");
+  return load_text(read_text_file(file, "file"), file, models);
+}
+
+KindTable KindTable::load_text(std::string_view text, const std::filesystem::path& file, ModelLibrary& models) {
   const std::string fname = file.string();
-  toml::table root = parse_toml_file(fname);
+  toml::table root = parse_toml_text(text, fname);
   std::vector<Problem> problems;
   TomlReader r(fname, problems);
   KindTable out;

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "world/collision_names.hpp"
@@ -66,6 +67,8 @@ class KindTable {
   // Parses the TOML; loads every model (paths relative to the kinds file) into `models`.
   // Throws InputError with file:line: field: message for every problem found.
   static KindTable load(const std::filesystem::path& file, ModelLibrary& models);
+  // The same from `text`, the contents of `file` (its folder resolves the model paths).
+  static KindTable load_text(std::string_view text, const std::filesystem::path& file, ModelLibrary& models);
   int find(const std::string& name) const;  // -1 if unknown
   const Kind& operator[](int i) const { return kinds_[static_cast<size_t>(i)]; }
   int size() const { return static_cast<int>(kinds_.size()); }

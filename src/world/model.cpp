@@ -10,6 +10,7 @@
 
 #include "world/error.hpp"
 #include "world/limits.hpp"
+#include "world/text_file.hpp"
 #include "world/toml_util.hpp"
 
 namespace npsnet::world {
@@ -40,8 +41,8 @@ Vec3f newell_normal(const Model& m, const Face& f) {
 // tinyobjloader reads `v nan 1 0` or `v abc 1 0` without complaint (abc as 0): every vertex
 // line is checked here first, with its line number: 3 to 6 numbers (x y z [w] or x y z r g b),
 // each finite and the coordinates within kMaxSizeM.
-void check_vertex_lines(const std::filesystem::path& file) {
-  std::ifstream in(file);
+void check_vertex_lines(std::string_view text, const std::string& fname) {
+  std::istringstream in{std::string(text)};
   std::string line;
   std::vector<Problem> problems;
   for (int ln = 1; std::getline(in, line); ++ln) {
@@ -50,18 +51,18 @@ void check_vertex_lines(const std::filesystem::path& file) {
     std::vector<std::string> tok;
     for (std::string t; ss >> t;) tok.push_back(t);
     if (tok.size() < 3 || tok.size() > 6) {
-      problems.push_back({file.string(), ln, "v", "a vertex needs x y z (got " + std::to_string(tok.size()) + " values)"});
+      problems.push_back({fname, ln, "v", "a vertex needs x y z (got " + std::to_string(tok.size()) + " values)"});
       continue;
     }
     for (size_t i = 0; i < tok.size(); ++i) {
       char* end = nullptr;
       const double v = std::strtod(tok[i].c_str(), &end);
       if (end == tok[i].c_str() || *end != '\0' || !std::isfinite(v)) {
-        problems.push_back({file.string(), ln, "v", "'" + tok[i] + "' is not a finite number"});
+        problems.push_back({fname, ln, "v", "'" + tok[i] + "' is not a finite number"});
         break;
       }
       if (i < 3 && std::abs(v) > kMaxSizeM) {
-        problems.push_back({file.string(), ln, "v", "coordinate " + range_message(-kMaxSizeM, kMaxSizeM, "m", v)});
+        problems.push_back({fname, ln, "v", "coordinate " + range_message(-kMaxSizeM, kMaxSizeM, "m", v)});
         break;
       }
     }
@@ -74,17 +75,25 @@ void check_vertex_lines(const std::filesystem::path& file) {
 Model load_obj(const std::filesystem::path& file) {
   const std::string fname = file.string();
   if (!std::filesystem::exists(file)) throw InputError(fname, 0, "model", "file not found");
-  check_vertex_lines(file);
-  tinyobj::ObjReaderConfig cfg;
-  cfg.triangulate = false;  // Haines' test works on the polygon as modelled
-  cfg.mtl_search_path = file.parent_path().string();
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(fname, cfg)) {
-    const std::string e = reader.Error();
-    throw InputError(fname, line_in(e), "model", e.empty() ? "cannot parse OBJ" : e);
+  return load_obj_text(read_text_file(file, "model"), file);
+}
+
+Model load_obj_text(std::string_view text, const std::filesystem::path& file) {
+  const std::string fname = file.string();
+  check_vertex_lines(text, fname);
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> mats;
+  std::string warn, err;
+  std::string mtl_dir = file.parent_path().string();
+  if (!mtl_dir.empty()) mtl_dir += '/';
+  tinyobj::MaterialFileReader mtl_reader(mtl_dir);
+  std::istringstream in{std::string(text)};
+  // Haines' test works on the polygon as modelled: no triangulation.
+  if (!tinyobj::LoadObj(&attrib, &shapes, &mats, &warn, &err, &in, &mtl_reader, /*triangulate=*/false,
+                        /*default_vcols_fallback=*/true)) {
+    throw InputError(fname, line_in(err), "model", err.empty() ? "cannot parse OBJ" : err);
   }
-  const auto& attrib = reader.GetAttrib();
-  const auto& mats = reader.GetMaterials();
   Model m;
   m.file = fname;
   const size_t nv = attrib.vertices.size() / 3;
@@ -95,7 +104,7 @@ Model load_obj(const std::filesystem::path& file) {
     if (!v.allFinite()) throw InputError(fname, 0, "model", "vertex " + std::to_string(i + 1) + " is not finite");
     m.vertices.push_back(v);
   }
-  for (const auto& shape : reader.GetShapes()) {
+  for (const auto& shape : shapes) {
     size_t at = 0;
     for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
       const unsigned n = shape.mesh.num_face_vertices[f];

@@ -5,6 +5,7 @@
 #pragma once
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/math.hpp"
@@ -30,6 +31,8 @@ struct Model {
 
 // Throws InputError naming the file (and line for a bad face) on a missing or broken OBJ.
 Model load_obj(const std::filesystem::path& file);
+// The same from `text`, the contents of `file` (its folder holds the .mtl files it names).
+Model load_obj_text(std::string_view text, const std::filesystem::path& file);
 
 // All models, loaded once, referred to by index.
 class ModelLibrary {

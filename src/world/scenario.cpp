@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 #include "world/random.hpp"
+#include "world/text_file.hpp"
 #include "world/toml_util.hpp"
 
 namespace npsnet::world {
@@ -31,7 +32,13 @@ void check_id(TomlReader& r, const toml::node* n, const std::string& field, cons
 
 Scenario load_scenario(const std::filesystem::path& file) {
   const std::string fname = file.string();
-  toml::table root = parse_toml_file(fname);
+  if (!std::filesystem::exists(file)) throw InputError(fname, 0, "file", "file not found");
+  return load_scenario_text(read_text_file(file, "file"), file);
+}
+
+Scenario load_scenario_text(std::string_view text, const std::filesystem::path& file) {
+  const std::string fname = file.string();
+  toml::table root = parse_toml_text(text, fname);
   std::vector<Problem> problems;
   TomlReader r(fname, problems);
   Scenario s;
@@ -141,7 +148,7 @@ Scenario load_scenario(const std::filesystem::path& file) {
       }
       if (auto n = r.number(*t, "node", p + "node", false, tl)) {
         if (*n < 1 || *n > 65535 || *n != std::floor(*n)) r.problem(t->get("node"), p + "node", "must be an integer 1-65535");
-        v.node = static_cast<int>(*n);
+        else v.node = static_cast<int>(*n);
       }
       v.autonomous = r.boolean(*t, "autonomous", p + "autonomous").value_or(false);
       v.snapshots = r.boolean(*t, "snapshots", p + "snapshots").value_or(true);
@@ -220,12 +227,21 @@ Scenario load_scenario(const std::filesystem::path& file) {
 
 void load_objects_csv(const std::filesystem::path& file, const KindTable& kinds, const Terrain& terrain,
                       double water_level_m, FixedObjects& out, std::vector<Problem>& problems) {
-  const std::string fname = file.string();
-  std::ifstream in(file);
-  if (!in) {
-    problems.push_back({fname, 0, "objects", "cannot open file"});
+  std::string text;
+  try {
+    text = read_text_file(file, "objects");
+  } catch (const InputError& e) {
+    problems.insert(problems.end(), e.problems().begin(), e.problems().end());
     return;
   }
+  load_objects_csv_text(text, file, kinds, terrain, water_level_m, out, problems);
+}
+
+void load_objects_csv_text(std::string_view text, const std::filesystem::path& file, const KindTable& kinds,
+                           const Terrain& terrain, double water_level_m, FixedObjects& out,
+                           std::vector<Problem>& problems) {
+  const std::string fname = file.string();
+  std::istringstream in{std::string(text)};
   std::unordered_set<std::string> ids;
   ids.reserve(out.size() * 2 + 1024);
   for (const auto& id : out.id) ids.insert(id);

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "world/error.hpp"
@@ -65,11 +66,17 @@ struct Scenario {
 };
 
 Scenario load_scenario(const std::filesystem::path& file);
+// The same from `text`, the contents of `file` (its folder resolves the paths inside).
+Scenario load_scenario_text(std::string_view text, const std::filesystem::path& file);
 World build_world(const Scenario& s);
 
 // Reads a fixed-object CSV (id,kind,x_m,y_m,heading_deg) into `out`, checking each line.
 void load_objects_csv(const std::filesystem::path& file, const KindTable& kinds, const Terrain& terrain,
                       double water_level_m, FixedObjects& out, std::vector<Problem>& problems);
+// The same from `text`, the contents of `file` (named in problems).
+void load_objects_csv_text(std::string_view text, const std::filesystem::path& file, const KindTable& kinds,
+                           const Terrain& terrain, double water_level_m, FixedObjects& out,
+                           std::vector<Problem>& problems);
 
 // The bundled kinds file (models/kinds.toml in the source tree).
 std::filesystem::path default_kinds_file();

@@ -4,12 +4,18 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "world/text_file.hpp"
+
 namespace npsnet::world {
 
 toml::table parse_toml_file(const std::string& file) {
   if (!std::filesystem::exists(file)) throw InputError(file, 0, "file", "file not found");
+  return parse_toml_text(read_text_file(file, "file"), file);
+}
+
+toml::table parse_toml_text(std::string_view text, const std::string& file) {
   try {
-    return toml::parse_file(file);
+    return toml::parse(text, file);
   } catch (const toml::parse_error& e) {
     throw InputError(file, static_cast<int>(e.source().begin.line), "syntax", std::string(e.description()));
   }

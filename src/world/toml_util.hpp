@@ -15,6 +15,8 @@ std::string range_message(double lo, double hi, const std::string& unit, double 
 
 // Parses `file`; a syntax error becomes InputError with its line.
 toml::table parse_toml_file(const std::string& file);
+// Parses `text` as the contents of `file` (named in problems; nothing is read from disk).
+toml::table parse_toml_text(std::string_view text, const std::string& file);
 
 class TomlReader {
  public:

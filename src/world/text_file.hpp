@@ -1,0 +1,13 @@
+// Reading a whole input file into memory, so that each loader has one in-memory entry point
+// (`..._text(text, file)`, used by the file version, the tests and the fuzz targets in fuzz/).
+#pragma once
+#include <filesystem>
+#include <string>
+
+namespace npsnet::world {
+
+// The bytes of `file` as they are (binary). Throws InputError(file, 0, field, "cannot open
+// file: <reason>") when it cannot be opened or read.
+std::string read_text_file(const std::filesystem::path& file, const std::string& field);
+
+}  // namespace npsnet::world
