@@ -1,80 +1,49 @@
-// Fuzz target (a): one UDP datagram through the node's receive path as far as it stands apart
-// from a socket: DatagramParser (the session's filter: exercise 1, our own site:app 1:1 ignored)
-// -> RemoteEntityTable (join, update, deactivate, dead reckoning, smoothing, timeout) -> the
-// entity_joined / entity_timeout / fire / detonation / collision events as the bridge names
-// them (ids, markings) -> EventLog (JSON Lines, to /dev/null). Each input starts from an empty
-// table, so a finding replays alone.
-#include <cmath>
+// Fuzz target (a): one UDP datagram through the node's whole receive path, then one tick:
+// NetBridge::receive (the session's parser and filter, remote entities joining / updating /
+// leaving, cultural features, Fire, Detonation, Collision) -> Simulation::tick (remote poses,
+// dynamics, collision, world::apply, craters, the event log) -> the bridge's publishing.
+// The node is node 1 (site 1, app 1, exercise 1) of fuzz/data/scenarios/net.toml; each input
+// starts from a fresh copy of that world, so a finding replays alone. The event log is written
+// to /dev/null (every line serialised), or to $NPSNET_FUZZ_EVENTS when set (to read a replay). Its session is on loopback multicast (a group and port
+// of its own, TTL 1, loopback off): what the tick publishes never leaves the host.
+#include <cstdlib>
+#include <random>
 #include <string>
 
 #include "fuzz_support.hpp"
-#include "net/net.hpp"
-#include "node/event_log.hpp"
+#include "node/net_bridge.hpp"
+#include "world/scenario.hpp"
 
 namespace {
 
-std::string id_text(const net::EntityId& id) {
-  return std::to_string(id.site) + ":" + std::to_string(id.application) + ":" + std::to_string(id.entity);
-}
+using namespace npsnet;
 
-nlohmann::json event(const char* type, double t) { return {{"event", type}, {"t", t}}; }
-
-void finite_or_null(nlohmann::json& ev, const char* key, double x, double y, double z) {
-  if (std::isfinite(x) && std::isfinite(y) && std::isfinite(z)) ev[key] = {x, y, z};
-  else ev[key] = nullptr;
-}
+struct Fixture {
+  world::Scenario scenario = world::load_scenario(fuzz::data_dir() / "scenarios" / "net.toml");
+  world::World world = world::build_world(scenario);
+  node::BridgeOptions options;
+  node::EventLog log{std::getenv("NPSNET_FUZZ_EVENTS") ? std::getenv("NPSNET_FUZZ_EVENTS") : "/dev/null"};
+  Fixture() {
+    std::random_device rd;  // a port of our own: 20000..59999
+    options.url = "udp://239.255.77.77:" + std::to_string(20000 + rd() % 40000);
+    options.iface = "127.0.0.1";
+  }
+  std::unique_ptr<net::Session> session() const {
+    net::SessionConfig c = node::session_config(options);
+    c.transport.multicast_loopback = false;
+    return std::make_unique<net::Session>(c);
+  }
+};
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  using npsnet::node::EventLog;
-  static EventLog log("/dev/null");
-  static net::DatagramParser parser(net::ReceiveFilter{true, 1, true, 1, 1});
-  static net::Counters counters;
-  net::RemoteEntityTable table;
-  const double now = 100.0;
-  parser.parse(std::span<const std::uint8_t>(data, size), counters,
-               net::Overloaded{
-                   [&](const net::EntityStatePdu& p) {
-                     if (table.apply(p, now) != net::RemoteEntityTable::ApplyResult::Joined) return;
-                     auto ev = event("entity_joined", now);
-                     ev["entity"] = id_text(p.entity_id);
-                     ev["marking"] = net::marking_text(p.marking);
-                     log.write(ev);
-                   },
-                   [&](const net::EntityStateUpdatePdu& p) { table.apply(p, now); },
-                   [&](const net::FirePdu& p) {
-                     auto ev = event("fire", now);
-                     ev["shooter"] = id_text(p.firing_entity_id);
-                     ev["round"] = id_text(p.munition_id);
-                     log.write(ev);
-                   },
-                   [&](const net::DetonationPdu& p) {
-                     auto ev = event("detonation", now);
-                     finite_or_null(ev, "point", p.location.x, p.location.y, p.location.z);
-                     ev["result"] = p.detonation_result;
-                     log.write(ev);
-                   },
-                   [&](const net::CollisionPdu& p) {
-                     auto ev = event("collision", now);
-                     ev["a"] = id_text(p.issuing_entity_id);
-                     ev["b"] = id_text(p.colliding_entity_id);
-                     log.write(ev);
-                   }});
-  // Poses shown over the next seconds (blend, then dead reckoning), then the timeout.
-  for (double dt : {0.05, 0.5, 3.0}) {
-    for (std::size_t i = 0; i < table.size(); ++i) {
-      const net::Pose p = table.displayed_pose(i, now + dt);
-      const net::Pose q = table.dead_reckoned_pose(i, now + dt);
-      (void)p, (void)q;
-    }
-  }
-  table.expire(now + 60, [&](const net::RemoteEntity& r) {
-    auto ev = event("entity_timeout", now + 60);
-    ev["entity"] = id_text(r.id);
-    ev["marking"] = net::marking_text(r.marking);
-    log.write(ev);
-  });
-  log.flush();
+  static Fixture f;
+  node::Simulation sim(f.world, f.scenario, f.log, 0.1);
+  node::NetBridge bridge(f.options, f.session(), sim, f.log);
+  bridge.attach();
+  bridge.receive(std::span<const std::uint8_t>(data, size), bridge.clock_s());
+  sim.tick();
+  f.log.flush();
   return 0;
 }
