@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "world/error.hpp"
@@ -52,8 +53,16 @@ std::optional<std::pair<std::string, std::string>> parse_line(const std::string&
 
 std::vector<Action> read_actions(const std::filesystem::path& file) {
   const std::string name = file.string();
-  std::ifstream in(file);
+  std::ifstream in(file, std::ios::binary);
   if (!in) throw world::InputError(name, 0, "file", std::filesystem::exists(file) ? "cannot be read" : "file not found");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return read_actions_text(text.str(), file);
+}
+
+std::vector<Action> read_actions_text(std::string_view text, const std::filesystem::path& file) {
+  const std::string name = file.string();
+  std::istringstream in{std::string(text)};
   std::vector<world::Problem> problems;
   std::vector<Action> out;
   std::string line;

@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdio>
 #include <filesystem>
+#include <string_view>
 #include <vector>
 
 #include "input/action.hpp"
@@ -13,6 +14,8 @@ namespace npsnet::input {
 // FILE:LINE: field: message (bad JSON, unknown action, t missing/negative/decreasing, value
 // outside -1..1, unknown camera mode, ...). Vehicle ids in `switch` are checked by the player.
 std::vector<Action> read_actions(const std::filesystem::path& file);
+// The same from `text`, the contents of `file` (named in problems).
+std::vector<Action> read_actions_text(std::string_view text, const std::filesystem::path& file);
 
 // Writes actions as they are applied, one line each, flushed per line (a crashed or killed
 // session keeps what was played). Throws std::runtime_error when the file cannot be opened.
