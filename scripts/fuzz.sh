@@ -14,8 +14,7 @@ cd "$(dirname "$0")/.."
 secs="${1:-60}"
 shift || true
 targets=("$@")
-# datagram joins the default list once the bridge decodes Latin-1 markings (a known crash today).
-[ ${#targets[@]} -gt 0 ] || targets=(scenario kinds objects model input)
+[ ${#targets[@]} -gt 0 ] || targets=(datagram scenario kinds objects model input)
 nice_cmd=(nice -n "${NPSNET_FUZZ_NICE:-19}")
 if ! command -v clang++ >/dev/null 2>&1; then
   echo "fuzz: clang++ not found (bash scripts/install-deps.sh installs clang)" >&2
