@@ -170,7 +170,10 @@ KindTable KindTable::load_text(std::string_view text, const std::filesystem::pat
     k.blast_radius_m = r.number_in(*t, "blast_radius_m", p + "blast_radius_m", false, tl, 0, kMaxSizeM, "m").value_or(0);
     k.crater_radius_m = r.number_in(*t, "crater_radius_m", p + "crater_radius_m", false, tl, 0, kMaxSizeM, "m").value_or(0);
     k.crater_depth_m = r.number_in(*t, "crater_depth_m", p + "crater_depth_m", false, tl, 0, kMaxSizeM, "m").value_or(0);
-    k.rounds = static_cast<int>(r.number_in(*t, "rounds", p + "rounds", false, tl, 0, kMaxCount, "").value_or(0));
+    if (auto v = r.number_in(*t, "rounds", p + "rounds", false, tl, 0, kMaxCount, "")) {
+      if (*v != std::floor(*v)) r.problem(t->get("rounds"), p + "rounds", "must be a whole number of rounds");
+      else k.rounds = static_cast<int>(*v);
+    }
     k.fuel_l = r.number_in(*t, "fuel_l", p + "fuel_l", false, tl, 0, kMaxCount, "l").value_or(0);
     k.sensor_range_m = r.number_in(*t, "sensor_range_m", p + "sensor_range_m", false, tl, -1e7, 1e7, "m").value_or(default_sensor_range_m(k.mobility));
     if (!(k.sensor_range_m >= 0)) r.problem(t->get("sensor_range_m"), p + "sensor_range_m", "must not be negative");
