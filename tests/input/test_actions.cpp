@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "support/scratch.hpp"
 #include "input/action_file.hpp"
 #include "input/gamepad.hpp"
 #include "input/keyboard.hpp"
@@ -18,7 +19,7 @@ using namespace npsnet::input;
 
 namespace {
 std::filesystem::path write(const std::string& name, const std::string& text) {
-  const auto dir = std::filesystem::temp_directory_path() / "npsnet-tests";
+  const auto dir = npsnet::test::scratch_dir();
   std::filesystem::create_directories(dir);
   std::ofstream(dir / name) << text;
   return dir / name;
@@ -64,7 +65,7 @@ TEST(ActionFile, ReadsEveryActionKind) {
 }
 
 TEST(ActionFile, RecorderOutputReadsBackEqual) {
-  const auto dir = std::filesystem::temp_directory_path() / "npsnet-tests";
+  const auto dir = npsnet::test::scratch_dir();
   std::filesystem::create_directories(dir);
   const auto f = dir / "actions-rec.jsonl";
   std::vector<Action> in = {{0.1, ActionType::Throttle, 1, {}, {}},     {0.2, ActionType::Steer, -0.35, {}, {}},

@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 
 namespace {
 fs::path fresh_dir(const std::string& name) {
-  const auto d = fs::temp_directory_path() / "npsnet-tests" / name;
+  const auto d = npsnet::test::scratch_dir() / name;
   fs::remove_all(d);
   fs::create_directories(d);
   return d;

@@ -21,7 +21,7 @@ fs::path kDir;
 
 // A 2 km flat square at 50 m posts, no coordinate system (local metres).
 void write_terrain() {
-  kDir = fs::temp_directory_path() / "npsnet-tests" /
+  kDir = npsnet::test::scratch_dir() /
          (std::string("check-vs-run-") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
   fs::create_directories(kDir);
   std::ofstream t(kDir / "t.asc");

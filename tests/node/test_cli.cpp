@@ -33,7 +33,7 @@ TEST(Cli, CheckReportsEveryProblemAndExits2) {
 
 TEST(Cli, BadScenarioExits2AndWritesNothing) {
   const auto f = test::write_file("cli-bad.toml", "[world]\nterrain = \"missing.tif\"\n");
-  const auto events = std::filesystem::temp_directory_path() / "npsnet-tests" / "cli-bad-events.jsonl";
+  const auto events = npsnet::test::scratch_dir() / "cli-bad-events.jsonl";
   std::filesystem::remove(events);
   const auto o = run("run --scenario " + f.string() + " --events " + events.string() + " --no-render");
   EXPECT_EQ(o.rc, 2) << o.text;
@@ -48,7 +48,7 @@ TEST(Cli, BadFlagsExit2) {
 }
 
 TEST(Cli, HeadlessRunWritesEventLog) {
-  const auto dir = std::filesystem::temp_directory_path() / "npsnet-tests" / "cli-run";
+  const auto dir = npsnet::test::scratch_dir() / "cli-run";
   std::filesystem::remove_all(dir);
   const auto o = run("run --seconds 10 --no-render --quiet --events " + (dir / "e.jsonl").string());
   EXPECT_EQ(o.rc, 0) << o.text;

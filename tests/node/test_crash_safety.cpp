@@ -13,6 +13,8 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "support/scratch.hpp"
+
 extern char** environ;
 
 namespace fs = std::filesystem;
@@ -65,7 +67,7 @@ void expect_whole_lines(const fs::path& log, int& lines) {
 }  // namespace
 
 TEST(CrashSafety, KilledAtAnyMomentLeavesWholeLinesAndWholePngs) {
-  const auto dir = fs::temp_directory_path() / "npsnet-tests" / "crash";
+  const auto dir = npsnet::test::scratch_dir() / "crash";
   int killed = 0, lines = 0, pngs = 0;
   auto count_pngs = [&] {
     int n = 0;

@@ -32,7 +32,7 @@ std::vector<json> events(const std::filesystem::path& f) {
   return out;
 }
 std::filesystem::path tmp(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / "npsnet-tests";
+  const auto dir = npsnet::test::scratch_dir();
   std::filesystem::create_directories(dir);
   std::filesystem::remove(dir / name);
   return dir / name;

@@ -28,7 +28,7 @@ struct NodeRun {
   }
 };
 NodeRun run_into(const std::string& name, const std::string& args) {
-  const auto dir = fs::temp_directory_path() / "npsnet-tests" / name;
+  const auto dir = npsnet::test::scratch_dir() / name;
   fs::remove_all(dir);
   NodeRun r;
   r.out = test::npsnet_cli("run --quiet --size 160x90 --snapshots " + dir.string() + " " + args);

@@ -7,6 +7,7 @@
 
 #include "dynamics/dynamics.hpp"
 #include "world/changes.hpp"
+#include "support/scratch.hpp"
 #include "world/pose.hpp"
 #include "world/scenario.hpp"
 
@@ -63,7 +64,7 @@ inline void index_fixed(world::World& w, bool home_only = true) {
 }
 
 inline std::filesystem::path write_file(const std::string& name, const std::string& text) {
-  const auto dir = std::filesystem::temp_directory_path() / "npsnet-tests";
+  const auto dir = npsnet::test::scratch_dir();
   std::filesystem::create_directories(dir);
   const auto p = dir / name;
   std::ofstream(p) << text;
