@@ -156,14 +156,13 @@ KindTable KindTable::load_text(std::string_view text, const std::filesystem::pat
     if (k.max_speed_kmh < 0) r.problem(t->get("max_speed_kmh"), p + "max_speed_kmh", "must not be negative");
     if (auto d = r.numbers(*t, "dis_type", p + "dis_type", 7, 7, true, tl)) {
       const auto& v = *d;
-      for (size_t i = 0; i < 7; ++i) {
+      bool fits = true;  // a value cast to an octet it does not fit is undefined (fuzz finding)
+      for (size_t i = 0; i < 7 && fits; ++i) {
         const double hi = i == 2 ? 65535 : 255;  // country is 16 bits, the others 8
-        if (v[i] < 0 || v[i] > hi || v[i] != std::floor(v[i])) {
-          r.problem(t->get("dis_type"), p + "dis_type", "field " + std::to_string(i + 1) + " " + range_message(0, hi, "", v[i]).insert(8, "an integer "));
-          break;
-        }
+        fits = v[i] >= 0 && v[i] <= hi && v[i] == std::floor(v[i]);
+        if (!fits) r.problem(t->get("dis_type"), p + "dis_type", "field " + std::to_string(i + 1) + " " + range_message(0, hi, "", v[i]).insert(8, "an integer "));
       }
-      k.dis = {uint8_t(v[0]), uint8_t(v[1]), uint16_t(v[2]), uint8_t(v[3]), uint8_t(v[4]), uint8_t(v[5]), uint8_t(v[6])};
+      if (fits) k.dis = {uint8_t(v[0]), uint8_t(v[1]), uint16_t(v[2]), uint8_t(v[3]), uint8_t(v[4]), uint8_t(v[5]), uint8_t(v[6])};
     }
     k.guided = r.boolean(*t, "guided", p + "guided").value_or(false);
     if (k.guided && k.mobility != Mobility::Munition) r.problem(t->get("guided"), p + "guided", "only a munition is guided");
