@@ -46,19 +46,52 @@ Euler rotate(const Euler& e, const Eigen::Vector3d& w, double dt) {
   return to_euler(q);
 }
 
+Eigen::Matrix3d skew(const Eigen::Vector3d& u) {
+  Eigen::Matrix3d m;
+  m << 0, -u.z(), u.y(), u.z(), 0, -u.x(), -u.y(), u.x(), 0;
+  return m;
+}
+
+// Annex E (E.6) body-axis integrals for body rates w over t, about the unit axis u = w/|w|,
+// c = |w|: exp([w] t) = u u' + cos(ct) (I - u u') + sin(ct) [u];
+// R1 = int_0^t exp([w] s) ds = t u u' + sin(ct)/c (I - u u') + (1 - cos(ct))/c [u];
+// R2 = int_0^t s exp([w] s) ds = t^2/2 u u' + (t sin(ct)/c + (cos(ct) - 1)/c^2) (I - u u')
+//                               + (sin(ct)/c^2 - t cos(ct)/c) [u].
+// Below 1e-9 rad/s the limits (R1 = t I, R2 = t^2/2 I) hold to double precision.
+struct BodyIntegrals {
+  Eigen::Matrix3d rot, r1, r2;
+};
+BodyIntegrals body_integrals(const Eigen::Vector3d& w, double t) {
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const double c = w.norm();
+  if (!(c > 1e-9) || !std::isfinite(c)) return {I, t * I, 0.5 * t * t * I};
+  const Eigen::Vector3d u = w / c;
+  const Eigen::Matrix3d uu = u * u.transpose(), perp = I - uu, k = skew(u);
+  const double ct = c * t, sn = std::sin(ct), cs = std::cos(ct);
+  return {uu + cs * perp + sn * k,                                   //
+          t * uu + (sn / c) * perp + ((1 - cs) / c) * k,             //
+          0.5 * t * t * uu + (t * sn / c + (cs - 1) / (c * c)) * perp + (sn / (c * c) - t * cs / c) * k};
+}
+
 }  // namespace
 
 Pose dead_reckon(const KinematicState& s, DrAlgorithm algorithm, double dt) noexcept {
-  Pose p{s.position, s.orientation};
-  Eigen::Vector3d v = s.velocity, a = s.acceleration;
-  int base = static_cast<int>(algorithm);
-  if (base >= 6 && base <= 9) {  // body axes: rotate into world with the initial orientation
-    const Eigen::Matrix3d r = to_quaternion(s.orientation).toRotationMatrix();
-    v = r * v;
-    a = r * a;
-    base -= 4;
+  Pose p{s.position, s.orientation, s.velocity};
+  const Eigen::Vector3d& v = s.velocity;
+  const Eigen::Vector3d& a = s.acceleration;
+  const int alg = static_cast<int>(algorithm);
+  if (alg >= 6 && alg <= 9) {  // body axes
+    const Eigen::Matrix3d r0 = to_quaternion(s.orientation).toRotationMatrix();
+    const bool rotating = alg == 7 || alg == 8;
+    const bool accel = alg == 8 || alg == 9;
+    const Eigen::Vector3d w = rotating ? s.angular_velocity : Eigen::Vector3d::Zero();
+    const BodyIntegrals b = body_integrals(w, dt);
+    p.position += r0 * (b.r1 * v + (accel ? Eigen::Vector3d(b.r2 * a) : Eigen::Vector3d::Zero()));
+    p.velocity = r0 * b.rot * (accel ? Eigen::Vector3d(v + a * dt) : v);
+    if (rotating) p.orientation = rotate(s.orientation, s.angular_velocity, dt);
+    return p;
   }
-  switch (base) {
+  switch (alg) {
     case 2:  // FPW
       p.position += v * dt;
       break;
@@ -68,12 +101,15 @@ Pose dead_reckon(const KinematicState& s, DrAlgorithm algorithm, double dt) noex
       break;
     case 4:  // RVW
       p.position += v * dt + 0.5 * a * dt * dt;
+      p.velocity = v + a * dt;
       p.orientation = rotate(s.orientation, s.angular_velocity, dt);
       break;
     case 5:  // FVW
       p.position += v * dt + 0.5 * a * dt * dt;
+      p.velocity = v + a * dt;
       break;
     default:  // 0 other, 1 static
+      p.velocity.setZero();
       break;
   }
   return p;

@@ -2,6 +2,9 @@
 #include "net/remote_table.hpp"
 
 #include <algorithm>
+#include <cmath>
+
+#include "net/timestamp.hpp"
 
 namespace net {
 namespace {
@@ -37,14 +40,51 @@ bool RemoteEntityTable::remove(const EntityId& id) {
   return true;
 }
 
+namespace {
+double wrap_half_hour(double d) {
+  d = std::fmod(d, 3600.0);
+  if (d >= 1800.0) d -= 3600.0;
+  if (d < -1800.0) d += 3600.0;
+  return d;
+}
+}  // namespace
+
+void RemoteEntityTable::stamp(RemoteEntity& e, std::uint32_t ts, double now_s, double unix_now_s) {
+  const DecodedTimestamp d = decode_timestamp(ts);
+  if (d.absolute && unix_now_s >= 0 && std::isfinite(unix_now_s)) {
+    const double age = wrap_half_hour(std::fmod(unix_now_s, 3600.0) - d.seconds_past_hour);
+    if (age >= -kMaxStateAgeS && age <= kMaxStateAgeS) {
+      e.state_s = now_s - std::max(0.0, age);
+      return;
+    }
+  }
+  // A clock that does not advance (many senders leave the timestamp 0) tells nothing.
+  if (e.updates > 0 && timestamp_difference(ts, e.last_timestamp) <= 0) {
+    e.state_s = now_s;
+    return;
+  }
+  // Relative (or an absolute clock we disagree with): delay beyond the least delayed PDU's.
+  const double cand = now_s - d.seconds_past_hour;
+  double excess = 0;
+  if (e.has_clock_offset) excess = wrap_half_hour(cand - e.clock_offset_s);
+  if (!e.has_clock_offset || excess < 0 || excess > kClockJumpS) {
+    e.clock_offset_s = cand;  // a less delayed PDU, the first one, or a restarted clock
+    e.has_clock_offset = true;
+    excess = 0;
+  } else {
+    e.clock_offset_s += 0.01 * excess;  // follow a sender clock that runs slow
+  }
+  e.state_s = now_s - std::min(excess, kMaxStateAgeS);
+}
+
 void RemoteEntityTable::start_blend(RemoteEntity& e, const Pose& shown, double now_s) const {
-  const Pose track = dead_reckon(e.state, e.algorithm, 0.0);
+  const Pose track = dead_reckon(e.state, e.algorithm, now_s - e.state_s);
   e.blend_offset = shown.position - track.position;
   e.blend_rotation = to_quaternion(shown.orientation) * to_quaternion(track.orientation).inverse();
   e.blend_start_s = now_s;
 }
 
-RemoteEntityTable::ApplyResult RemoteEntityTable::apply(const EntityStatePdu& p, double now_s) {
+RemoteEntityTable::ApplyResult RemoteEntityTable::apply(const EntityStatePdu& p, double now_s, double unix_now_s) {
   auto found = find(p.entity_id);
   if (p.appearance & kAppearanceDeactivated) {
     if (!found) return ApplyResult::Ignored;
@@ -72,6 +112,8 @@ RemoteEntityTable::ApplyResult RemoteEntityTable::apply(const EntityStatePdu& p,
   e.algorithm = dr_algorithm_from_wire(p.dead_reckoning.algorithm);
   e.state = kinematic_state(p);
   e.last_update_s = now_s;
+  if (joined) e.has_clock_offset = false, e.updates = 0;
+  stamp(e, p.header.timestamp, now_s, unix_now_s);
   e.last_timestamp = p.header.timestamp;
   ++e.updates;
   e.variable_parameters.assign(p.variable_parameters.begin(), p.variable_parameters.end());
@@ -85,8 +127,8 @@ RemoteEntityTable::ApplyResult RemoteEntityTable::apply(const EntityStatePdu& p,
   return joined ? ApplyResult::Joined : ApplyResult::Updated;
 }
 
-RemoteEntityTable::ApplyResult RemoteEntityTable::apply(const EntityStateUpdatePdu& p,
-                                                        double now_s) {
+RemoteEntityTable::ApplyResult RemoteEntityTable::apply(const EntityStateUpdatePdu& p, double now_s,
+                                                        double unix_now_s) {
   auto found = find(p.entity_id);
   if (!found) return ApplyResult::Ignored;
   if (p.appearance & kAppearanceDeactivated) {
@@ -101,6 +143,7 @@ RemoteEntityTable::ApplyResult RemoteEntityTable::apply(const EntityStateUpdateP
   e.state.orientation = {p.orientation.psi, p.orientation.theta, p.orientation.phi};
   e.appearance = p.appearance;
   e.last_update_s = now_s;
+  stamp(e, p.header.timestamp, now_s, unix_now_s);
   e.last_timestamp = p.header.timestamp;
   ++e.updates;
   e.variable_parameters.assign(p.variable_parameters.begin(), p.variable_parameters.end());
@@ -110,7 +153,7 @@ RemoteEntityTable::ApplyResult RemoteEntityTable::apply(const EntityStateUpdateP
 
 Pose RemoteEntityTable::dead_reckoned_pose(std::size_t i, double now_s) const noexcept {
   const RemoteEntity& e = entities_[i];
-  return dead_reckon(e.state, e.algorithm, now_s - e.last_update_s);
+  return dead_reckon(e.state, e.algorithm, now_s - e.state_s);
 }
 
 Pose RemoteEntityTable::displayed_pose(std::size_t i, double now_s) const noexcept {

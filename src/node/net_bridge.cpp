@@ -24,6 +24,10 @@ constexpr size_t kMaxDatagramsPerTick = 128;
 // point from its entity (m).
 constexpr double kMaxSpeedMps = 1e4;
 constexpr double kMaxContactOffsetM = 1000.0;
+// Published acceleration (ours, not the standard's): low-pass time constant (s), and the speed
+// (m/s) below which a vehicle is at rest and sends none.
+constexpr double kAccelTauS = 0.5;
+constexpr double kAtRestMps = 0.05;
 
 double round3(double v) { return std::round(v * 1000.0) / 1000.0; }
 Eigen::Vector3d ev(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
@@ -72,6 +76,7 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
     aoi_ = std::make_unique<AreaOfInterest>(o.aoi_cell_m, o.aoi_groups, session_->transport().destination().address, w,
                                             dr_thresholds(o.timeout_s).heartbeat_s);
   prev_vel_ecef_.assign(own_.size(), Vec3::Zero());
+  accel_.assign(own_.size(), Vec3::Zero());
   prev_heading_.assign(own_.size(), 0.f);
   removed_.assign(own_.size(), 0);
   for (size_t i = 0; i < own_.size(); ++i) prev_heading_[i] = ents.heading_deg[own_[i]];
@@ -148,6 +153,9 @@ nlohmann::json NetBridge::event(const char* type) const {
 
 void NetBridge::receive(std::span<const std::uint8_t> datagram, double arrival_s) {
   const bool process = !frozen_ || (frozen_behavior_ & 4);  // a freeze may stop processing updates
+  // UTC dates absolute timestamps; a recording's clock is not now.
+  const double utc = source_ ? net::RemoteEntityTable::kNoUtc
+                             : std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
   session_->parse(datagram, net::Overloaded{
                                 [&](const net::StopFreezePdu& p) { on_stop_freeze(p); },
                                 [&](const net::StartResumePdu& p) { on_start_resume(p); },
@@ -158,10 +166,10 @@ void NetBridge::receive(std::span<const std::uint8_t> datagram, double arrival_s
                                       (p.entity_id.application & kCulturalAppBit))
                                     on_cultural(p);
                                   else if (p.entity_type.kind != dis::kEntityKindMunition)  // rounds: Fire / Detonation
-                                    remotes_.on_entity_state(p, arrival_s);
+                                    remotes_.on_entity_state(p, arrival_s, utc);
                                 },
                                 [&](const net::EntityStateUpdatePdu& p) {
-                                  if (process) remotes_.on_update(p, arrival_s);
+                                  if (process) remotes_.on_update(p, arrival_s, utc);
                                 },
                                 [&](const net::FirePdu& p) { on_fire(p); },
                                 [&](const net::DetonationPdu& p) { on_detonation(p); },
@@ -341,8 +349,8 @@ bool NetBridge::decides(const collision::Contact& c) { return ownership_.decides
 
 void NetBridge::publish_vehicles() {
   const auto& w = sim_.world();
-  const double t = w.t;
   const double dt = sim_.dt();
+  const double t = w.t + dt;  // the time of the state: dynamics has stepped, w.t not yet
   const size_t n = own_.size();
   size_t sent_now = 0, first_deferred = n;
   // Round robin from where the last tick's cap stopped, so no vehicle waits more than a few ticks.
@@ -352,8 +360,11 @@ void NetBridge::publish_vehicles() {
     if (removed_[i]) continue;  // taken out by a Remove Entity
     net::KinematicState s = entity_truth(w, e);
     const Vec3 v = vv(s.velocity);
-    s.acceleration = ev((v - prev_vel_ecef_[i]) / dt);
-    if (!pubs_[i].has_sent()) s.acceleration.setZero();
+    // Published acceleration: the velocity change per tick, low-pass filtered over kAccelTauS
+    // and zero at rest (a tank stopping in one tick is not sent as |a| = 100 m/s^2).
+    if (pubs_[i].has_sent()) accel_[i] += ((v - prev_vel_ecef_[i]) / dt - accel_[i]) * (dt / (kAccelTauS + dt));
+    if (!pubs_[i].has_sent() || v.norm() < kAtRestMps) accel_[i].setZero();
+    s.acceleration = ev(accel_[i]);
     s.angular_velocity = Eigen::Vector3d(0, 0, wrap180(w.ents.heading_deg[e] - prev_heading_[i]) * kDeg / dt);
     prev_vel_ecef_[i] = v;
     prev_heading_[i] = w.ents.heading_deg[e];
@@ -366,7 +377,7 @@ void NetBridge::publish_vehicles() {
       if (first_deferred == n) first_deferred = i;
       continue;
     }
-    fill_entity_state(w, e, own_id(e), s, pubs_[i].algorithm(), app, static_cast<std::uint8_t>(opt_.exercise), es_);
+    fill_entity_state(w, e, own_id(e), s, pubs_[i].algorithm(), app, static_cast<std::uint8_t>(opt_.exercise), t, es_);
     if (pack_ && !aoi_) {  // several Entity States to a datagram of at most 1400 octets
       if (!batch_.add(es_)) {
         flush_batch();
@@ -397,7 +408,7 @@ void NetBridge::send_deactivation(int e) {
   const auto& w = sim_.world();
   const std::uint32_t app = damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]) | net::kAppearanceDeactivated;
   fill_entity_state(w, e, own_id(e), entity_truth(w, e), net::DrAlgorithm::Static, app,
-                    static_cast<std::uint8_t>(opt_.exercise), es_);
+                    static_cast<std::uint8_t>(opt_.exercise), w.t, es_);
   session_->send_to(group_at(w.ents.pos[e]), es_);
 }
 

@@ -13,8 +13,9 @@
 //    by another source of datagrams (run --replay: a recording, node/replay_feed.hpp), called
 //    each tick with the bridge clock, which is then the scenario clock (world t, s).
 //  * Local vehicles (ents.local && ents.node == --node) go out as Entity State PDUs: ECEF
-//    position (m), DIS Euler angles (rad), ECEF velocity (m/s) and acceleration (m/s^2), yaw
-//    rate (rad/s, body z), the kind's DIS type, marking = scenario id, damage in appearance
+//    position (m), DIS Euler angles (rad), ECEF velocity (m/s) and acceleration (m/s^2, the
+//    per-tick velocity change low-pass filtered over 0.5 s, zero at rest), yaw rate (rad/s,
+//    body z), timestamp = the scenario time of the state (after the tick's step), the kind's DIS type, marking = scenario id, damage in appearance
 //    bits 3-4 (dis_mapping.hpp), DR algorithm RVW, sent when the DrPublisher says so (1 m /
 //    3 deg / 5 s heartbeat) or when the appearance changes. Entity number = entity index + 1
 //    (every node loads the same scenario, so indices agree). One PDU a datagram (Wireshark 4.0
@@ -172,6 +173,7 @@ class NetBridge {
   std::vector<net::DrPublisher> pubs_;
   std::vector<std::uint32_t> sent_appearance_;
   std::vector<Vec3> prev_vel_ecef_;
+  std::vector<Vec3> accel_;  // per own vehicle: filtered ECEF acceleration, m/s^2
   std::vector<std::uint32_t> sent_group_;  // per own vehicle: the group of its last Entity State
   std::unique_ptr<AreaOfInterest> aoi_;
   std::vector<float> prev_heading_;

@@ -34,7 +34,7 @@ net::KinematicState entity_truth(const world::World& w, int e) {
 }
 
 void fill_entity_state(const world::World& w, int e, const net::EntityId& id, const net::KinematicState& s,
-                       net::DrAlgorithm algorithm, std::uint32_t appearance, std::uint8_t exercise,
+                       net::DrAlgorithm algorithm, std::uint32_t appearance, std::uint8_t exercise, double state_t_s,
                        net::EntityStatePdu& es) {
   es.entity_id = id;
   es.force_id = 1;
@@ -43,7 +43,7 @@ void fill_entity_state(const world::World& w, int e, const net::EntityId& id, co
   es.marking = marking_of(w.ents.id[e]);
   es.appearance = appearance;
   net::write_kinematics(s, algorithm, es);
-  es.header.timestamp = net::relative_timestamp(w.t);
+  es.header.timestamp = net::relative_timestamp(state_t_s);
   es.header.exercise_id = exercise;
 }
 

@@ -1,7 +1,8 @@
 // PDU building: what a local entity, fixed object, fire, detonation or collision looks like on
 // the wire. Pure functions of the world and the ids the caller resolved; no I/O.
 // Units: world local frame metres and m/s in, WGS84 ECEF metres and m/s, DIS Euler radians out.
-// Timestamps: relative, the scenario time of the state the PDU carries (w.t).
+// Timestamps: relative, the scenario time of the state the PDU carries (w.t; an Entity State
+// is given its state's time, which after a tick's step is w.t + dt).
 #pragma once
 #include <cstdint>
 
@@ -16,9 +17,10 @@ namespace npsnet::node {
 net::KinematicState entity_truth(const world::World& w, int e);
 
 // The one Entity State fill of a local vehicle: id, force, kind's DIS type (also as the
-// alternative type), marking = scenario id, appearance, kinematics with `algorithm`, timestamp.
+// alternative type), marking = scenario id, appearance, kinematics with `algorithm`, timestamp
+// = state_t_s (scenario s) relative.
 void fill_entity_state(const world::World& w, int e, const net::EntityId& id, const net::KinematicState& s,
-                       net::DrAlgorithm algorithm, std::uint32_t appearance, std::uint8_t exercise,
+                       net::DrAlgorithm algorithm, std::uint32_t appearance, std::uint8_t exercise, double state_t_s,
                        net::EntityStatePdu& es);
 
 // A fixed object as a static cultural feature (kind 5): appearance = its state index.

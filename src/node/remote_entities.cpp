@@ -52,10 +52,10 @@ int RemoteEntities::kind_for(int e, const net::EntityType& t) const {
   return same_type(w.kinds[k].dis, t) ? k : vehicle_kind_for(w.kinds, t);
 }
 
-void RemoteEntities::on_entity_state(const net::EntityStatePdu& p, double now_s) {
+void RemoteEntities::on_entity_state(const net::EntityStatePdu& p, double now_s, double unix_now_s) {
   grow();
   if (!finite3(Eigen::Vector3d(p.location.x, p.location.y, p.location.z))) return;
-  const auto r = table_.apply(p, now_s);
+  const auto r = table_.apply(p, now_s, unix_now_s);
   if (r == net::RemoteEntityTable::ApplyResult::Joined) {
     if (auto i = table_.find(p.entity_id)) joined(*i);
   } else if (r == net::RemoteEntityTable::ApplyResult::Deactivated) {
@@ -96,7 +96,9 @@ void RemoteEntities::inject(const world::EntityChange& ch) {
   inject_.clear();
 }
 
-void RemoteEntities::on_update(const net::EntityStateUpdatePdu& p, double now_s) { table_.apply(p, now_s); }
+void RemoteEntities::on_update(const net::EntityStateUpdatePdu& p, double now_s, double unix_now_s) {
+  table_.apply(p, now_s, unix_now_s);
+}
 
 void RemoteEntities::joined(std::size_t ri) {
   world::World& w = sim_.world();
@@ -175,7 +177,7 @@ void RemoteEntities::set_poses(double now_s) {
     if (!finite3(pose.position)) continue;
     const Vec3 p = frame.from_ecef(vv(pose.position));
     const Vec3 hpr = frame.from_dis_euler(p, Vec3(pose.orientation.psi, pose.orientation.theta, pose.orientation.phi));
-    const Vec3 ahead = frame.from_ecef(vv(pose.position + r.state.velocity));
+    const Vec3 ahead = frame.from_ecef(vv(pose.position + pose.velocity));  // dead-reckoned, world axes
     if (!usable(p, ahead - p, hpr)) continue;
     ents.pos[e] = p;
     ents.vel[e] = ahead - p;

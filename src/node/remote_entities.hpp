@@ -3,7 +3,8 @@
 //    them (matched by marking; an unknown marking adds an entity of the kind whose DIS type
 //    matches, or the generic kind of its domain; dis_mapping.hpp). A scenario vehicle whose owner
 //    sends another DIS type takes the kind of that type through world::Changes (to_kind).
-//  * Each tick, before dynamics, a remote entity's pose and velocity are set from
+//  * Each tick, before dynamics, a remote entity's pose and velocity (the dead-reckoned one at
+//    that moment, world axes: v + a t, body axes turned into the world) are set from
 //    RemoteEntityTable::displayed_pose (the "remote entity states -> World" stage of
 //    shared/ARCHITECTURE.md; only this stage writes remote poses and their active flag).
 //  * No update for the DR timeout deactivates it. Events entity_joined / entity_timeout: id
@@ -36,9 +37,10 @@ class RemoteEntities {
   std::size_t size() const { return table_.size(); }
   const net::DrThresholds& thresholds() const { return table_.thresholds(); }
 
-  // A vehicle's Entity State (not a cultural feature, not a munition) arriving at now_s.
-  void on_entity_state(const net::EntityStatePdu& p, double now_s);
-  void on_update(const net::EntityStateUpdatePdu& p, double now_s);
+  // A vehicle's Entity State (not a cultural feature, not a munition) arriving at now_s (bridge
+  // clock), UTC unix_now_s (net::RemoteEntityTable::kNoUtc when unknown): its timestamp dates it.
+  void on_entity_state(const net::EntityStatePdu& p, double now_s, double unix_now_s);
+  void on_update(const net::EntityStateUpdatePdu& p, double now_s, double unix_now_s);
   // Deactivates entities silent for longer than the timeout (entity_timeout events).
   void expire(double now_s);
   // Sets the pose and velocity of every active remote entity to its displayed pose at now_s.

@@ -140,7 +140,7 @@ void NetBridge::idle() {
       s.velocity.setZero();
       fill_entity_state(w, e, own_id(e), s, net::DrAlgorithm::Static,
                         damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]) | net::kAppearanceFrozen,
-                        static_cast<std::uint8_t>(opt_.exercise), es_);
+                        static_cast<std::uint8_t>(opt_.exercise), w.t, es_);
       session_->send_to(group_at(w.ents.pos[e]), es_);
     }
   }

@@ -6,9 +6,16 @@
 //      1 Static: pose unchanged.              2 FPW: P + V dt, orientation fixed.
 //      3 RPW: P + V dt, orientation rotated by the body rates.
 //      4 RVW: P + V dt + A dt^2/2, rotating.  5 FVW: P + V dt + A dt^2/2, orientation fixed.
-//    0 (other) is treated as static. 6..9 (body axes: FPB RPB RVB FVB) are approximated by
-//    rotating the body-axis velocity/acceleration into world axes with the initial orientation
-//    and then applying 2..5 (exact for FPB).
+//    0 (other) is treated as static. 6..9 are the body-axis forms (IEEE 1278.1-2012 Annex E,
+//    E.6): velocity v and acceleration a are in the entity's body axes (x forward, y right,
+//    z down), the body turns at the angular velocity w, so that
+//      6 FPB: P + R0 v dt (orientation fixed)       9 FVB: P + R0 (v dt + a dt^2/2) (fixed)
+//      7 RPB: P + R0 R1 v, orientation rotating     8 RVB: P + R0 (R1 v + R2 a), rotating
+//    with R1 = integral_0^dt exp([w] s) ds and R2 = integral_0^dt s exp([w] s) ds (Annex E's
+//    closed forms): an entity turning at 0.2 rad/s at 10 m/s runs on a circle of 50 m.
+//    The returned Pose carries the dead-reckoned velocity too (world axes, m/s): V + A dt for
+//    world forms (V for P forms), R0 exp([w] dt) (v + a dt) for body forms (no rotation for
+//    F forms) — the velocity at that moment, e.g. for a collision response.
 //  * DrPublisher: one per local entity. needs_update() says whether an Entity State must go out
 //    now: first time, |true - dead-reckoned| position error > position_threshold_m, orientation
 //    error > orientation_threshold_rad, or heartbeat_s since the last send (>=).
@@ -61,6 +68,7 @@ struct KinematicState {
 struct Pose {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   Euler orientation;
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // world (ECEF) axes, m/s
 };
 
 // Body -> world rotation Rz(psi) Ry(theta) Rx(phi), and back (theta in [-pi/2, pi/2]).
