@@ -92,7 +92,7 @@ Vec3 pos_at(const Scene& s, size_t i, int step) { return s.mc[i] + (step & 1 ? s
 
 // ---- ours: hashed moving grid + fixed gridsquares, sphere test -------------------------------
 struct Ours {
-  collision::FixedGrid fixed;
+  world::FixedGrid fixed;
   collision::MovingGrid grid;
   std::vector<collision::Box> boxes;
   std::vector<Vec3> c;
@@ -117,7 +117,8 @@ struct Ours {
     for (uint32_t i = 0; i < n; ++i) {
       const Vec3 ci = c[i];
       const double ri = s.mr[i];
-      fixed.query(boxes[i], [&](uint32_t o, const collision::FixedGrid::Item&) {
+      const collision::Box& b = boxes[i];
+      fixed.query(b.lo[0], b.lo[1], b.hi[0], b.hi[1], [&](int o, float) {
         const double rr = ri + s.fr[o];
         if ((s.fc[o] - ci).squaredNorm() < rr * rr) out.emplace_back(i, n + o);  // double, as the peers
       });

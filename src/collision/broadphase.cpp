@@ -1,4 +1,4 @@
-// Hashed moving grid, static sphere grid, brute-force reference (broadphase.hpp).
+// Hashed moving grid, brute-force reference (broadphase.hpp).
 #include "collision/broadphase.hpp"
 
 #include <algorithm>
@@ -112,37 +112,6 @@ void brute_pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint32_t, 
   for (uint32_t i = 0; i < boxes.size(); ++i)
     for (uint32_t j = i + 1; j < boxes.size(); ++j)
       if (overlap(boxes[i], boxes[j])) out.emplace_back(i, j);
-}
-
-void FixedGrid::build(const std::vector<Vec3>& centres, const std::vector<float>& radii, double width_m,
-                      double depth_m, double cell_m) {
-  cell_ = cell_m;
-  inv_ = 1.0 / cell_m;
-  cols_ = std::max(1, static_cast<int>(std::ceil(width_m / cell_m)));
-  rows_ = std::max(1, static_cast<int>(std::ceil(depth_m / cell_m)));
-  const size_t ncell = static_cast<size_t>(cols_) * rows_;
-  const size_t n = centres.size();
-  x_.resize(n);
-  std::vector<Item> objs(n);
-  for (size_t k = 0; k < n; ++k) {
-    objs[k] = {static_cast<float>(centres[k].x()), static_cast<float>(centres[k].y()),
-               static_cast<float>(centres[k].z()), radii[k], static_cast<uint32_t>(k)};
-    x_[k] = objs[k].x;
-  }
-  start_.assign(ncell + 1, 0);
-  auto each_cell = [&](const Item& it, auto&& f) {
-    const int i0 = col(it.x - it.r), i1 = col(it.x + it.r), j0 = row(it.y - it.r), j1 = row(it.y + it.r);
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) f(static_cast<size_t>(j) * cols_ + i);
-  };
-  for (const Item& it : objs) each_cell(it, [&](size_t c) { ++start_[c + 1]; });
-  for (size_t c = 0; c < ncell; ++c) start_[c + 1] += start_[c];
-  items_.resize(start_[ncell]);
-  std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
-  for (const Item& it : objs) each_cell(it, [&](size_t c) { items_[fill[c]++] = it; });
-  occupied_.assign((ncell + 63) / 64, 0);
-  for (size_t c = 0; c < ncell; ++c)
-    if (start_[c + 1] > start_[c]) occupied_[c >> 6] |= uint64_t{1} << (c & 63);
 }
 
 }  // namespace npsnet::collision

@@ -1,4 +1,4 @@
-// Broad phases for the continuous method (and the speed benchmark), on plain arrays.
+// Broad phase of moving bodies for the continuous method (and the speed benchmark), on plain arrays.
 //  MovingGrid: all pairs i < j of overlapping boxes among N moving bodies. A hashed 2D grid
 //    whose cell is 3x the largest extent among the ordinary boxes (boxes more than 4x the
 //    mean extent are "large" and tested against every box), so a box lies in at most 2 x 2
@@ -7,9 +7,7 @@
 //    the first cell the two boxes share (and only between entries of the same cell when two
 //    cells share a bucket). Rebuilt every call into reused buffers (no allocation once warm).
 //    Linear in N for bounded density, also where bodies crowd (the cell shrinks to the bodies).
-//  FixedGrid: static spheres in a uniform grid (125 m gridsquares), each listed in every
-//    gridsquare its circle overlaps (removes the thesis's Figure 9 border miss); a query lists
-//    each object once over every gridsquare a box overlaps.
+//  Fixed objects are the world's one grid (world/fixed_grid.hpp), not indexed again here.
 //  brute_pairs: the plain O(N^2) reference the tests compare MovingGrid with.
 // Units: metres, local frame; boxes in float (a 50 km map keeps ~4 mm resolution).
 #pragma once
@@ -61,49 +59,5 @@ class MovingGrid {
 };
 
 void brute_pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint32_t, uint32_t>>& out);
-
-class FixedGrid {
- public:
-  // Spheres (centre, radius) in a width x depth map from (0, 0), gridsquares of `cell_m`.
-  void build(const std::vector<Vec3>& centres, const std::vector<float>& radii, double width_m,
-             double depth_m, double cell_m);
-  size_t size() const { return x_.size(); }
-  // Calls f(id) once for every object whose circle's bounding square overlaps the box in x, y
-  // (it still needs the sphere test); the object may lie in several of the box's gridsquares.
-  template <class F>
-  void query(const Box& b, F&& f) const {
-    const int i0 = col(b.lo[0]), i1 = col(b.hi[0]), j0 = row(b.lo[1]), j1 = row(b.hi[1]);
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        const size_t c = static_cast<size_t>(j) * cols_ + i;
-        if (!(occupied_[c >> 6] >> (c & 63) & 1)) continue;  // most gridsquares are empty
-        for (uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
-          const Item& it = items_[k];
-          if (it.x + it.r < b.lo[0] || it.x - it.r > b.hi[0] || it.y + it.r < b.lo[1] || it.y - it.r > b.hi[1])
-            continue;
-          // Report in the first gridsquare the box and the object's circle share.
-          if ((i != i0 && col(it.x - it.r) != i) || (j != j0 && row(it.y - it.r) != j)) continue;
-          f(it.id, it);
-        }
-      }
-  }
-  struct Item {
-    float x, y, z, r;
-    uint32_t id;
-  };
-  // Gridsquare column / row of a coordinate, clamped to the map (truncation equals floor for
-  // x >= 0, and every x < 0 clamps to 0 either way).
-  int col(double x) const { return clampi(static_cast<int>(std::min(x * inv_, 1e9)), cols_); }
-  int row(double y) const { return clampi(static_cast<int>(std::min(y * inv_, 1e9)), rows_); }
-
- private:
-  static int clampi(int v, int n) { return v < 0 ? 0 : v >= n ? n - 1 : v; }
-  int cols_ = 1, rows_ = 1;
-  double cell_ = 125, inv_ = 1.0 / 125;
-  std::vector<float> x_;
-  std::vector<uint32_t> start_;
-  std::vector<uint64_t> occupied_;  // bit per gridsquare: lists something
-  std::vector<Item> items_;
-};
 
 }  // namespace npsnet::collision

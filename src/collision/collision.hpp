@@ -9,8 +9,8 @@
 //
 // "continuous" (issue 6, the node's default), which removes the thesis's chapter V limits:
 //  every body sweeps its sphere from (end centre - velocity * dt) to its end centre; the broad
-//    phase works on the swept boxes (fixed objects: a 125 m grid listing each object in every
-//    gridsquare its sphere overlaps, queried over every gridsquare the swept box overlaps;
+//    phase works on the swept boxes (fixed objects: the world's 125 m grid, world/fixed_grid.hpp,
+//    listing each object in every gridsquare its reach overlaps, queried over the swept box;
 //    moving: a hashed grid sized to the swept boxes, rebuilt each tick into reused arrays);
 //  the narrow phase solves the swept-sphere time of impact analytically (sweep.hpp), then goes
 //    up the pair's shape tiers (sphere -> oriented box -> convex hull -> polygon mesh, shapes.hpp)
@@ -122,7 +122,7 @@ class Detector {
   std::vector<std::pair<uint32_t, uint32_t>> pairs_;
   std::vector<uint32_t> found_;
   MovingGrid moving_;
-  FixedGrid fixed_grid_;
+  std::vector<float> fixed_x_, fixed_y_, fixed_r_;  // fixed objects' test circles (m)
   size_t fixed_indexed_ = static_cast<size_t>(-1);
   std::vector<uint32_t> rank_, fixed_rank_;
   std::vector<Shape> shapes_;           // per model index

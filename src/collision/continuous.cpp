@@ -200,28 +200,31 @@ void Detector::detect_continuous(const world::World& w) {
     boxes_[i] = swept_box(c0_[i], c1_[i], r_bound_[i]);
   }
 
-  // Fixed objects: a grid listing each in every gridsquare its sphere (or its model's bound,
-  // when a tier above the sphere may be asked) overlaps; built once per set of objects.
+  // Fixed objects: the world's grid (world/fixed_grid.hpp) lists each by its reach; each is
+  // tested here by its sphere (or its models' bound, when a tier above the sphere may be asked),
+  // centred where it stood when indexed (x, y do not change; craters only re-seat z).
   if (fixed_indexed_ != w.fixed.size()) {
-    std::vector<Vec3> centres(w.fixed.size());
-    std::vector<float> radii(w.fixed.size());
+    fixed_x_.resize(w.fixed.size()), fixed_y_.resize(w.fixed.size()), fixed_r_.resize(w.fixed.size());
     for (size_t o = 0; o < w.fixed.size(); ++o) {
-      centres[o] = world::fixed_centre(w, o);
+      const Vec3 c = world::fixed_centre(w, o);
+      fixed_x_[o] = static_cast<float>(c.x()), fixed_y_[o] = static_cast<float>(c.y());
       const world::Kind& k = w.kinds[w.fixed.kind[o]];
       const Tier top = opt_.tier != Tier::Auto ? opt_.tier : top_tier(k);
-      radii[o] = static_cast<float>(world::fixed_radius(w, o));
+      fixed_r_[o] = static_cast<float>(world::fixed_radius(w, o));
       if (top != Tier::Sphere) {
         prepare_shapes(w);
-        for (int mi : k.models) radii[o] = std::max(radii[o], static_cast<float>(shapes_[mi].bound_radius * 1.0001 + 1e-3));
+        for (int mi : k.models) fixed_r_[o] = std::max(fixed_r_[o], static_cast<float>(shapes_[mi].bound_radius * 1.0001 + 1e-3));
       }
     }
-    fixed_grid_.build(centres, radii, w.terrain.width_m(), w.terrain.depth_m(), thesis::kGridsquareM);
     fixed_indexed_ = w.fixed.size();
   }
   for (size_t i = 0; i < m; ++i) {
     const int e = static_cast<int>(order_[i]);
     const world::Kind& ke = w.kinds[ents.kind[e]];
-    fixed_grid_.query(boxes_[i], [&](uint32_t o, const FixedGrid::Item& it) {
+    const Box& b = boxes_[i];
+    w.grid.query(b.lo[0], b.lo[1], b.hi[0], b.hi[1], [&](int o, float) {
+      const float x = fixed_x_[o], y = fixed_y_[o], r = fixed_r_[o];
+      if (x + r < b.lo[0] || x - r > b.hi[0] || y + r < b.lo[1] || y - r > b.hi[1]) return;
       ++stats_.fixed_tests;
       const world::Kind& ko = w.kinds[w.fixed.kind[o]];
       const Tier tier = opt_.tier != Tier::Auto ? opt_.tier : std::min(top_tier(ke), top_tier(ko));
@@ -229,7 +232,7 @@ void Detector::detect_continuous(const world::World& w) {
       const double rs = world::fixed_radius(w, o);
       const bool sphere = tier == Tier::Sphere || w.is_munition(e);
       const Trace h = sphere_sweep(c0_[i], c1_[i], sphere ? r_sphere_[i] : r_bound_[i], fc, fc,
-                                      sphere ? rs : std::max<double>(rs, it.r));
+                                      sphere ? rs : std::max<double>(rs, r));
       ++stats_.sweep_pairs;
       if (!h.hit) {
         ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];

@@ -52,13 +52,11 @@ void Detector::detect_thesis(const world::World& w) {
     const double agl = ents.pos[e].z() - w.terrain.height(ents.pos[e].x(), ents.pos[e].y());
     if (agl > thesis::kFixedCheckThresholdHeightM) continue;
     const double r = world::entity_radius(w, e);
-    auto [first, last] = w.grid.objects_in(w.grid.cell_of(ents.pos[e].x(), ents.pos[e].y()));
-    for (auto it = first; it != last; ++it) {
+    w.grid.for_each_home(w.grid.cell_of(ents.pos[e].x(), ents.pos[e].y()), [&](int o) {
       ++stats_.fixed_tests;
-      const int o = static_cast<int>(*it);
       const Vec3 fc = world::fixed_centre(w, o);
       const double rr = r + world::fixed_radius(w, o);
-      if ((fc - c).squaredNorm() >= rr * rr) continue;
+      if ((fc - c).squaredNorm() >= rr * rr) return;
       const uint64_t key = pair_key(e, o, true);
       touching_.push_back(key);
       Contact k;
@@ -68,7 +66,7 @@ void Detector::detect_thesis(const world::World& w) {
       k.point = c + k.normal * std::min(r, d.norm());
       k.method = "sphere-fixed";
       candidates_.push_back(k);
-    }
+    });
   }
 
   // 2. Moving objects. L1 as a sweep over x: pairs with |dx| and |dy| both within 100 m.

@@ -297,7 +297,7 @@ void detonate(const world::World& w, const world::DetonationRecord& d, world::Ch
   if (R <= 0) return;
   const int q = std::max(1, d.quantity);
   auto levels = [&](double d) { return d < R / 3 ? 3 : d < 2 * R / 3 ? 2 : d < R ? 1 : 0; };
-  if (d.decides_fixed) w.grid.for_each_near(w.fixed, point.x(), point.y(), R, [&](int o) {
+  if (d.decides_fixed) w.grid.for_each_near(point.x(), point.y(), R, [&](int o) {
     const int lv = levels((w.fixed.pos[o] - point).norm());
     const world::Kind& k = w.kinds[w.fixed.kind[o]];
     const int ls = last_state(k);

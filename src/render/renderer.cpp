@@ -63,10 +63,9 @@ struct Renderer::Impl {
   int water_vertices = 0;
   float hmin = 0, hmax = 1;
 
-  // fixed-object blocks (CSR), bounds per block, radius per model
-  double block_m = 500;
+  // fixed-object blocks over the world's grid: objects and bounds per block, radius per model
   int bcols = 0, brows = 0;
-  std::vector<uint32_t> block_start, block_items;
+  std::vector<uint32_t> block_count;
   std::vector<Vec3> block_lo, block_hi;
   std::vector<float> model_radius;  // farthest vertex from the model origin, m
   std::vector<int> kind_max_lod_radius;
@@ -84,28 +83,23 @@ int Renderer::Impl::model_for(int kind, int state) const {
 }
 
 void Renderer::Impl::build_blocks() {
+  // Blocks of kBlockGridsquares x kBlockGridsquares gridsquares of the world's one fixed-object
+  // grid (world/fixed_grid.hpp): an object belongs to the block of its home gridsquare; only the
+  // block's count and bounds are kept here.
   const auto& f = world->fixed;
-  const auto& t = world->terrain;
-  const double cell = world->grid.cols() > 0 ? world->grid.cell_m() : thesis::kGridsquareM;
-  block_m = cell * kBlockGridsquares;
-  bcols = std::max(1, static_cast<int>(std::ceil(t.width_m() / block_m)));
-  brows = std::max(1, static_cast<int>(std::ceil(t.depth_m() / block_m)));
+  const auto& g = world->grid;
+  if (g.size() != f.size()) throw std::runtime_error("render: the fixed objects are not indexed (World::index_fixed)");
+  const int cols = std::max(1, g.cols()), rows = std::max(1, g.rows());
+  bcols = (cols + kBlockGridsquares - 1) / kBlockGridsquares;
+  brows = (rows + kBlockGridsquares - 1) / kBlockGridsquares;
   const size_t nb = static_cast<size_t>(bcols) * static_cast<size_t>(brows);
-  const auto block_of = [&](const Vec3& p) {
-    const int a = std::clamp(static_cast<int>(std::floor(p.x() / block_m)), 0, bcols - 1);
-    const int b = std::clamp(static_cast<int>(std::floor(p.y() / block_m)), 0, brows - 1);
-    return static_cast<size_t>(b) * static_cast<size_t>(bcols) + static_cast<size_t>(a);
-  };
-  block_start.assign(nb + 1, 0);
-  for (size_t i = 0; i < f.size(); ++i) ++block_start[block_of(f.pos[i]) + 1];
-  for (size_t b = 0; b < nb; ++b) block_start[b + 1] += block_start[b];
-  block_items.assign(f.size(), 0);
-  std::vector<uint32_t> fill(block_start.begin(), block_start.end() - 1);
+  block_count.assign(nb, 0);
   block_lo.assign(nb, Vec3(1e30, 1e30, 1e30));
   block_hi.assign(nb, Vec3(-1e30, -1e30, -1e30));
   for (size_t i = 0; i < f.size(); ++i) {
-    const size_t b = block_of(f.pos[i]);
-    block_items[fill[b]++] = static_cast<uint32_t>(i);
+    const size_t b = static_cast<size_t>(g.row(f.pos[i].y()) / kBlockGridsquares) * static_cast<size_t>(bcols) +
+                     static_cast<size_t>(g.col(f.pos[i].x()) / kBlockGridsquares);
+    ++block_count[b];
     // the object's extent over all its states' models
     double r = 0, zlo = 0, zhi = 0;
     const int k = f.kind[i];
@@ -338,32 +332,36 @@ void Renderer::Impl::draw_scene(const SceneView& v, const ViewMath& vm, const Ca
   const auto& fs = (v.fixed_state && v.fixed_state->size() == w.fixed.size()) ? *v.fixed_state : w.fixed.state;
   const auto& f = w.fixed;
   const double reach = std::min(max_dist, simple_k * 40.0);  // no fixed object is 40 m in radius
-  const int a0 = std::clamp(static_cast<int>(std::floor((vm.eye.x() - reach) / block_m)), 0, bcols - 1);
-  const int a1 = std::clamp(static_cast<int>(std::floor((vm.eye.x() + reach) / block_m)), 0, bcols - 1);
-  const int b0 = std::clamp(static_cast<int>(std::floor((vm.eye.y() - reach) / block_m)), 0, brows - 1);
-  const int b1 = std::clamp(static_cast<int>(std::floor((vm.eye.y() + reach) / block_m)), 0, brows - 1);
+  const auto& g = w.grid;
+  const bool indexed = g.cols() > 0 && !f.id.empty();
+  const int a0 = indexed ? g.col(vm.eye.x() - reach) / kBlockGridsquares : 0;
+  const int a1 = indexed ? g.col(vm.eye.x() + reach) / kBlockGridsquares : -1;
+  const int b0 = indexed ? g.row(vm.eye.y() - reach) / kBlockGridsquares : 0;
+  const int b1 = indexed ? g.row(vm.eye.y() + reach) / kBlockGridsquares : -1;
   int bv = 0, bc = 0;
   for (int b = b0; b <= b1; ++b)
     for (int a = a0; a <= a1; ++a) {
       const size_t blk = static_cast<size_t>(b) * static_cast<size_t>(bcols) + static_cast<size_t>(a);
-      if (block_start[blk] == block_start[blk + 1]) continue;
+      if (block_count[blk] == 0) continue;
       const Vec3 near = vm.eye.cwiseMax(block_lo[blk]).cwiseMin(block_hi[blk]);
       if ((near - vm.eye).norm() > reach || !vm.box_visible(block_lo[blk], block_hi[blk])) {
         ++bc;
         continue;
       }
       ++bv;
-      for (uint32_t k = block_start[blk]; k < block_start[blk + 1]; ++k) {
-        const uint32_t i = block_items[k];
+      const auto draw = [&](int i) {
         const int m = model_for(f.kind[i], fs[i]);
-        if (m < 0) continue;
+        if (m < 0) return;
         const float r = model_radius[static_cast<size_t>(m)];
         const double d = (f.pos[i] - vm.eye).norm();
-        if (d > simple_k * r || d > max_dist + r || !vm.sphere_visible(f.pos[i], r)) continue;
+        if (d > simple_k * r || d > max_dist + r || !vm.sphere_visible(f.pos[i], r)) return;
         meshes->add(m, d > full_k * r,
                     {static_cast<float>(f.pos[i].x()), static_cast<float>(f.pos[i].y()),
                      static_cast<float>(f.pos[i].z()), static_cast<float>(deg2rad(f.heading_deg[i])), 0, 0, 1, 0});
-      }
+      };
+      const int j1 = std::min(g.rows(), (b + 1) * kBlockGridsquares), i1 = std::min(g.cols(), (a + 1) * kBlockGridsquares);
+      for (int j = b * kBlockGridsquares; j < j1; ++j)
+        for (int i = a * kBlockGridsquares; i < i1; ++i) g.for_each_home(j * g.cols() + i, draw);
     }
   stats.blocks_visible = bv;
   stats.blocks_culled = bc;

@@ -91,7 +91,7 @@ void apply(World& w, const Changes& c, Applied& out) {
     if (r.empty()) continue;
     out.terrain_patches.push_back(r);
     // Fixed objects standing in the bowl settle onto the new ground (vehicles follow the terrain).
-    w.grid.for_each_near(w.fixed, cr.point.x(), cr.point.y(), cr.radius_m, [&](int o) {
+    w.grid.for_each_near(cr.point.x(), cr.point.y(), cr.radius_m, [&](int o) {
       w.fixed.pos[o].z() = w.terrain.height(w.fixed.pos[o].x(), w.fixed.pos[o].y());
     });
   }

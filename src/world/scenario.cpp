@@ -407,7 +407,7 @@ World build_world(const Scenario& s) {
       place(v, k, "background.", sf, 0);
     }
   }
-  w.grid.build(w.fixed, w.terrain.width_m(), w.terrain.depth_m(), thesis::kGridsquareM, /*home_only=*/true);
+  w.index_fixed();
   return w;
 }
 

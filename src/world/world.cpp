@@ -12,6 +12,7 @@ void FixedObjects::add(std::string id_, int kind_, const Vec3& p, float heading,
   pos.push_back(p);
   heading_deg.push_back(heading);
   radius_m.push_back(radius);
+  reach_m.push_back(radius);
 }
 
 int Entities::add(std::string id_, int kind_, const Vec3& p, float heading, float radius) {
@@ -47,7 +48,8 @@ int Entities::add(std::string id_, int kind_, const Vec3& p, float heading, floa
 
 bool FixedObjects::valid() const {
   const size_t n = id.size();
-  return kind.size() == n && state.size() == n && pos.size() == n && heading_deg.size() == n && radius_m.size() == n;
+  return kind.size() == n && state.size() == n && pos.size() == n && heading_deg.size() == n && radius_m.size() == n &&
+         reach_m.size() == n;
 }
 
 bool Entities::valid() const {
@@ -71,67 +73,18 @@ bool World::valid() const {
       return false;
   for (size_t o = 0; o < fixed.size(); ++o)
     if (!kind_ok(fixed.kind[o], fixed.state[o])) return false;
-  return grid.cols() == 0 || grid.valid(fixed);
+  return (grid.cols() == 0 && fixed.size() == 0) || grid.valid(fixed.pos, fixed.reach_m);
 }
 
-bool GridIndex::valid(const FixedObjects& objs) const {
-  const size_t ncell = static_cast<size_t>(cols_) * rows_;
-  if (start_.size() != ncell + 1 || start_[0] != 0 || start_[ncell] != items_.size()) return false;
-  std::vector<uint32_t> listed(objs.size(), 0);
-  for (size_t c = 0; c < ncell; ++c) {
-    if (start_[c + 1] < start_[c]) return false;
-    for (uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
-      if (items_[k] >= objs.size()) return false;
-      ++listed[items_[k]];
-    }
+void World::index_fixed() {
+  for (size_t o = 0; o < fixed.size(); ++o) {
+    const Kind& k = kinds[fixed.kind[o]];
+    const Vec3f c0 = k.centre_by_state.empty() ? Vec3f::Zero() : k.centre_by_state[0];
+    float r = fixed.radius_m[o];
+    for (int m : k.models) r = std::max(r, models[m].true_radius * 1.001f + 0.01f);  // tiers' bound + margin
+    fixed.reach_m[o] = std::hypot(c0.x(), c0.y()) + r + 0.01f;
   }
-  for (size_t o = 0; o < objs.size(); ++o) {
-    const CellRect r = cells_of(objs.pos[o].x(), objs.pos[o].y(), home_only_ ? 0.0 : objs.radius_m[o]);
-    if (listed[o] != static_cast<uint32_t>((r.i1 - r.i0 + 1) * (r.j1 - r.j0 + 1))) return false;
-  }
-  return true;
-}
-
-int GridIndex::cell_of(double x, double y) const {
-  const int i = std::clamp(static_cast<int>(std::floor(x / cell_)), 0, cols_ - 1);
-  const int j = std::clamp(static_cast<int>(std::floor(y / cell_)), 0, rows_ - 1);
-  return j * cols_ + i;
-}
-
-GridIndex::CellRect GridIndex::cells_of(double x, double y, double r) const {
-  return {std::clamp(static_cast<int>(std::floor((x - r) / cell_)), 0, cols_ - 1),
-          std::clamp(static_cast<int>(std::floor((y - r) / cell_)), 0, rows_ - 1),
-          std::clamp(static_cast<int>(std::floor((x + r) / cell_)), 0, cols_ - 1),
-          std::clamp(static_cast<int>(std::floor((y + r) / cell_)), 0, rows_ - 1)};
-}
-
-void GridIndex::build(const FixedObjects& objs, double width_m, double depth_m, double cell_m, bool home_only) {
-  cell_ = cell_m;
-  cols_ = std::max(1, static_cast<int>(std::ceil(width_m / cell_m)));
-  rows_ = std::max(1, static_cast<int>(std::ceil(depth_m / cell_m)));
-  const size_t ncell = static_cast<size_t>(cols_) * rows_;
-  home_only_ = home_only;
-  // For each object, the range of cells its bounding circle overlaps (or its home cell).
-  auto range = [&](size_t k, int& i0, int& j0, int& i1, int& j1) {
-    const CellRect c = cells_of(objs.pos[k].x(), objs.pos[k].y(), home_only ? 0.0 : objs.radius_m[k]);
-    i0 = c.i0, j0 = c.j0, i1 = c.i1, j1 = c.j1;
-  };
-  start_.assign(ncell + 1, 0);
-  for (size_t k = 0; k < objs.size(); ++k) {
-    int i0, j0, i1, j1;
-    range(k, i0, j0, i1, j1);
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) ++start_[static_cast<size_t>(j) * cols_ + i + 1];
-  }
-  for (size_t c = 0; c < ncell; ++c) start_[c + 1] += start_[c];
-  items_.assign(start_[ncell], 0);
-  std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
-  for (size_t k = 0; k < objs.size(); ++k) {
-    int i0, j0, i1, j1;
-    range(k, i0, j0, i1, j1);
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) items_[fill[static_cast<size_t>(j) * cols_ + i]++] = static_cast<uint32_t>(k);
-  }
+  grid.build(fixed.pos, fixed.reach_m, terrain.width_m(), terrain.depth_m(), thesis::kGridsquareM);
 }
 
 }  // namespace npsnet::world

@@ -1,5 +1,5 @@
-// The accelerated broad phases agree with brute force on random scenes (crowded and spread,
-// small and large boxes), and the shape tiers nest (mesh contact => hull => box, and hull => sphere).
+// The moving broad phase agrees with brute force on random scenes (crowded and spread, small and
+// large boxes; the fixed-object grid's twin test is tests/world/test_fixed_grid.cpp), and the shape tiers nest (mesh contact => hull => box, and hull => sphere).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,28 +29,6 @@ TEST(MovingGrid, AgreesWithBruteForceOnRandomScenes) {
     collision::brute_pairs(boxes, b);
     std::sort(a.begin(), a.end());
     EXPECT_EQ(a, b) << "scene " << scene;
-  }
-}
-
-TEST(FixedGrid, QueryListsEachOverlappingObjectOnce) {
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> pos(0, 2000), rad(0.5, 300);
-  std::vector<Vec3> c;
-  std::vector<float> r;
-  for (int i = 0; i < 3000; ++i) c.emplace_back(pos(rng), pos(rng), 0), r.push_back(static_cast<float>(i % 50 ? rad(rng) / 30 : rad(rng)));
-  collision::FixedGrid g;
-  g.build(c, r, 2000, 2000, thesis::kGridsquareM);
-  for (int q = 0; q < 200; ++q) {
-    const Vec3 p(pos(rng), pos(rng), 0), p1 = p + Vec3(pos(rng) / 10, pos(rng) / 10, 0);
-    const collision::Box b = collision::swept_box(p, p1, 5);
-    std::vector<uint32_t> got, want;
-    g.query(b, [&](uint32_t id, const collision::FixedGrid::Item&) { got.push_back(id); });
-    for (uint32_t i = 0; i < c.size(); ++i) {
-      const float x = static_cast<float>(c[i].x()), y = static_cast<float>(c[i].y());
-      if (x + r[i] >= b.lo[0] && x - r[i] <= b.hi[0] && y + r[i] >= b.lo[1] && y - r[i] <= b.hi[1]) want.push_back(i);
-    }
-    std::sort(got.begin(), got.end());
-    EXPECT_EQ(got, want) << "query " << q;
   }
 }
 

@@ -155,7 +155,7 @@ TEST(BorderObjects, Figure9LargeObjectAtAGridsquareCornerTouchedFromTheNeighbour
     const double d = (rb + rt) * 0.8 / std::sqrt(2.0);  // diagonal offset: spheres overlap
     const int e = test::add_vehicle(w, "tank", "m1a1", 4 * g - 1.0 + d, 4 * g - 1.0 + d, 45, 0);
     EXPECT_NE(w.grid.cols(), -1);
-    test::index_fixed(w, /*home_only=*/true);  // the thesis's lists
+    test::index_fixed(w);  // the thesis's lists
     EXPECT_NE(w.grid.cell_of(w.ents.pos[e].x(), w.ents.pos[e].y()), w.grid.cell_of(w.fixed.pos[o].x(), w.fixed.pos[o].y()));
     return w;
   };
@@ -185,7 +185,7 @@ TEST(BorderObjects, ObjectLargerThanAGridsquareIsFoundFromEveryGridsquareItCover
   test::add_vehicle(w, "north", "m1a1", 6.5 * g, 6.5 * g + r - 2, 0, 0);
   test::add_vehicle(w, "diag", "m1a1", 6.5 * g + (r - 2) / std::sqrt(2.0), 6.5 * g - (r - 2) / std::sqrt(2.0), 0, 0);
   test::add_vehicle(w, "outside", "m1a1", 6.5 * g - r - 20, 6.5 * g, 0, 0);
-  test::index_fixed(w, true);
+  test::index_fixed(w);
   collision::Detector thesis_d(collision::Options{collision::Method::Thesis});
   std::vector<collision::Contact> c1;
   thesis_d.detect(w, c1);

@@ -94,7 +94,7 @@ TEST(Fixed, ThesisGridMissesAcrossTheBorder) {
   auto w = test::flat_world();
   const double border = thesis::kGridsquareM * 4;
   test::add_fixed(w, "t", "tree", border + 1.0, 562.5);
-  test::index_fixed(w, /*home_only=*/true);
+  test::index_fixed(w);
   test::add_vehicle(w, "a", "m1a1", border - 3.0, 562.5, 90, 0);
   collision::Detector d(collision::Options{collision::Method::Thesis});
   EXPECT_TRUE(detect_once(w, d).empty());

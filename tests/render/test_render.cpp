@@ -80,6 +80,7 @@ TEST(Render, TreeAtItsProjectedPlaceAndStumpAfterSwap) {
   const int tree = w.kinds.find("tree");
   ASSERT_GE(tree, 0);
   w.fixed.add("t1", tree, Vec3(128, 128, 50), 0.0f, 2.5f);
+  w.index_fixed();
   render::Renderer r(options(320, 240), w);
   render::Camera cam{Vec3(128, 96, 56), Vec3(128, 128, 54), 50};
   render::SceneView v{&w, nullptr, nullptr, 0.0, -1};
@@ -158,6 +159,7 @@ TEST(Render, EntityDrawnWithItsHeadingAndDamageState) {
 TEST(Render, WrittenPngDecodesWithTheRightSize) {
   world::World w = flat_world();
   w.fixed.add("t1", w.kinds.find("tree"), Vec3(128, 128, 50), 0.0f, 2.5f);
+  w.index_fixed();
   render::Renderer r(options(333, 211), w);
   r.render({&w, nullptr, nullptr, 0, -1}, {Vec3(128, 96, 56), Vec3(128, 128, 54), 50}, {}, true);
   const fs::path f = temp_dir("png") / "frame.png";
@@ -414,6 +416,7 @@ TEST(Render, CullingAndDistanceLod) {
   w.fixed.add("far", tree, Vec3(5000, 3500, 10), 0.0f, 2.5f);     // 2.5 km: simplified
   w.fixed.add("beyond", tree, Vec3(5000, 9900, 10), 0.0f, 2.5f);  // 8.9 km: not drawn
   w.fixed.add("behind", tree, Vec3(5000, 600, 10), 0.0f, 2.5f);   // behind the camera: culled
+  w.index_fixed();
   render::Renderer r(options(320, 240), w);
   r.render({&w, nullptr, nullptr, 0, -1}, {Vec3(5000, 1000, 14), Vec3(5000, 2000, 14), 50}, {}, false);
   const auto& st = r.stats();

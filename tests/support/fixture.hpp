@@ -59,9 +59,7 @@ inline int fire(world::World& w, int shooter, int munition_kind, const Vec3& tar
   return a.launched.at(0);
 }
 
-inline void index_fixed(world::World& w, bool home_only = true) {
-  w.grid.build(w.fixed, w.terrain.width_m(), w.terrain.depth_m(), thesis::kGridsquareM, home_only);
-}
+inline void index_fixed(world::World& w) { w.index_fixed(); }
 
 inline std::filesystem::path write_file(const std::string& name, const std::string& text) {
   const auto dir = npsnet::test::scratch_dir();

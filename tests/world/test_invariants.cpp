@@ -12,7 +12,7 @@ world::World small_world() {
   test::add_vehicle(w, "a", "m1a1", 500, 500, 0, 5);
   test::add_fixed(w, "t", "tree", 700, 700);
   test::add_fixed(w, "b", "building", 1000, 1000);
-  test::index_fixed(w, /*home_only=*/false);
+  test::index_fixed(w);
   return w;
 }
 }  // namespace
@@ -41,6 +41,6 @@ TEST(WorldValid, AnObjectMissingFromTheGridIsCaught) {
   auto w = small_world();
   test::add_fixed(w, "late", "rock", 1500, 1500);  // added after the grid was built
   EXPECT_FALSE(w.valid());
-  test::index_fixed(w, false);
+  test::index_fixed(w);
   EXPECT_TRUE(w.valid());
 }

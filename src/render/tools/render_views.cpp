@@ -54,6 +54,7 @@ world::World gallery_world(const std::filesystem::path& kinds_file) {
       }
     }
   }
+  w.index_fixed();
   return w;
 }
 
