@@ -6,7 +6,7 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 PKGS=(build-essential cmake pkg-config git
   libeigen3-dev libasio-dev libstb-dev libgdal-dev libtinyobjloader-dev libtomlplusplus-dev
   nlohmann-json3-dev libcli11-dev libspdlog-dev
-  libosmesa6-dev libgl-dev libglfw3-dev xvfb xauth libspnav-dev xdotool x11-utils imagemagick
+  libosmesa6-dev libgl-dev libglfw3-dev xvfb xauth libspnav-dev xdotool x11-utils imagemagick libx11-dev
   libgtest-dev libgmock-dev libbenchmark-dev libbullet-dev libfcl-dev gnuplot-nox
   gdal-bin python3-gdal python3-numpy
   tshark iproute2 smcroute libpcap-dev

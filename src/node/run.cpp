@@ -243,8 +243,20 @@ int run_command(const RunOptions& opt) {
   // The run goes on past its length (at most kResultDelayS more) until every result frame is written.
   const long extra = static_cast<long>(std::ceil(2.0 / o.dt)) + 1;
   long done = 0;
+  // Quit (Esc, a quit action) or the window closed: the run ends after this tick, but first,
+  // unpaced and without the window, the ticks that write the result frames still due (at most
+  // kResultDelayS), so every imminent frame in the log has its result, as at the run's end.
+  const char* ended_by = nullptr;
+  long end_by = 0;
+  double ended_t = 0;
+  const auto end_now = [&](const char* why, long i) {
+    if (!ended_by) ended_by = why, end_by = i + extra, ended_t = sim.world().t;
+  };
+  const auto go_on = [&](long i) {
+    return ended_by ? more() && i < end_by : i < ticks || (more() && i < ticks + extra);
+  };
   try {
-    for (long i = 0; i < ticks || (more() && i < ticks + extra); ++i, ++done) {
+    for (long i = 0; go_on(i); ++i, ++done) {
 #ifdef NPSNET_HAVE_NET
       if (bridge && bridge->frozen()) {  // Stop/Freeze: the scenario clock stands still
         const auto f0 = std::chrono::steady_clock::now();
@@ -255,21 +267,15 @@ int run_command(const RunOptions& opt) {
       const auto deadline = t0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                      std::chrono::duration<double>((i + 1) * o.dt));
 #ifdef NPSNET_HAVE_RENDER
-      if (window) window->before_tick();
+      if (window && !ended_by) window->before_tick();
       sim.tick();
-      if (window && !window->present(sim)) {  // window closed
-        ++done;
-        break;
-      }
-      if (paced && window) window->wait_until(deadline);
+      if (window && !ended_by && !window->present(sim)) end_now("the window was closed", i);
+      if (paced && window && !ended_by) window->wait_until(deadline);
 #else
       sim.tick();
 #endif
-      if (player && player->quit()) {  // Esc, or a quit action
-        ++done;
-        break;
-      }
-      if (paced) std::this_thread::sleep_until(deadline);
+      if (player && player->quit()) end_now("quit", i);  // Esc, or a quit action
+      if (paced && !ended_by) std::this_thread::sleep_until(deadline);
       if (!o.quiet && i + 1 >= next_progress && ticks >= 10) {
         std::fprintf(stderr, "npsnet: t = %.1f s (%ld%%)\n", sim.world().t, (i + 1) * 100 / ticks);
         next_progress += ticks / 10;
@@ -287,6 +293,7 @@ int run_command(const RunOptions& opt) {
     return 1;
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (ended_by && !o.quiet) std::fprintf(stderr, "npsnet: %s at t = %.1f s\n", ended_by, ended_t);
   // --- network ---
 #ifdef NPSNET_HAVE_NET
   if (bridge) {

@@ -6,12 +6,6 @@
 // folder: window-capture.png). Also measured from outside: from just before `xdotool keydown w`
 // to the swap of the first frame that shows its effect (both CLOCK_MONOTONIC).
 #include <gtest/gtest.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-
-#include <fcntl.h>
-
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -21,8 +15,7 @@
 #include <thread>
 
 #include "support/fixture.hpp"
-
-extern char** environ;
+#include "window_support.hpp"
 
 using namespace npsnet;
 using nlohmann::json;
@@ -32,21 +25,8 @@ double steady_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 int sh(const std::string& cmd) { return std::system(cmd.c_str()); }
-std::string slurp(const std::filesystem::path& f) {
-  std::ifstream in(f);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-std::string capture(const std::string& cmd) {
-  std::string out;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return out;
-  char buf[256];
-  while (size_t n = fread(buf, 1, sizeof buf, p)) out.append(buf, n);
-  pclose(p);
-  return out;
-}
+using test::capture;
+using test::slurp;
 }  // namespace
 
 TEST(Window, HeldKeysDriveTurnAndCollide) {
@@ -59,19 +39,11 @@ TEST(Window, HeldKeysDriveTurnAndCollide) {
   const std::string events = (dir / "events.jsonl").string(), rec = (dir / "input.jsonl").string(),
                     out = (dir / "out.txt").string();
   const std::string bin = std::string(NPSNET_BINARY_DIR) + "/npsnet";
-  std::vector<std::string> args = {bin, "run", "--window", "--scenario", test::source("tests/node/data/window.toml").string(),
-                                   "--seconds", "11", "--events", events, "--snapshots", (dir / "snap").string(),
-                                   "--record-input", rec};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, 1, 2);
-  pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, bin.c_str(), &fa, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&fa);
+  const pid_t pid = test::spawn_logged({bin, "run", "--window", "--scenario", test::source("tests/node/data/window.toml").string(),
+                                        "--seconds", "11", "--events", events, "--snapshots", (dir / "snap").string(),
+                                        "--record-input", rec},
+                                       out);
+  ASSERT_GT(pid, 0);
   // the window, then keys: W held, A held for 2.2 s while W is held, releases
   const std::string wid = capture("timeout 20 xdotool search --sync --onlyvisible --name '^NPSNET$' | head -1");
   ASSERT_FALSE(wid.empty()) << slurp(out);
@@ -88,14 +60,7 @@ TEST(Window, HeldKeysDriveTurnAndCollide) {
   const auto shot = dir / "window-capture.png";
   sh("import -window root " + shot.string());
   sh("xdotool keyup w");
-  int status = -1;
-  for (int i = 0; i < 300 && waitpid(pid, &status, WNOHANG) == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  if (waitpid(pid, &status, WNOHANG) == 0) {
-    kill(pid, SIGKILL);
-    waitpid(pid, &status, 0);
-    FAIL() << "npsnet --window did not end: " << slurp(out);
-  }
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << slurp(out);
+  ASSERT_EQ(test::wait_bounded(pid, 30), 0) << "npsnet --window did not end cleanly: " << slurp(out);
   const std::string text = slurp(out);
 
   // the keys arrived as actions, in order: throttle 1, steer -1, steer 0 (and throttle 0 at the end)
