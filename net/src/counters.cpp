@@ -45,7 +45,7 @@ std::string Counters::summary() const {
     }
   if (!any) s += " none";
   s += " | ignored own_echo=" + std::to_string(own_echo_ignored) +
-       " other_exercise=" + std::to_string(other_exercise_ignored) + " | sent";
+       (own_id_clash ? " own_id_clash=" + std::to_string(own_id_clash) : std::string()) + " other_exercise=" + std::to_string(other_exercise_ignored) + " | sent";
   any = false;
   for (std::size_t t = 0; t < sent.size(); ++t)
     if (sent[t]) {

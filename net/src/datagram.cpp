@@ -95,7 +95,7 @@ DatagramParser::Step DatagramParser::step(std::span<const std::uint8_t> rest, Co
   }
   if (filter_.ignore_own && origin.site == filter_.site &&
       origin.application == filter_.application) {
-    ++c.own_echo_ignored;
+    ++(filter_.echo ? c.own_echo_ignored : c.own_id_clash);
     return s;
   }
   ++c.decoded[h.pdu_type];

@@ -10,6 +10,26 @@ Session::Session(const SessionConfig& config)
   if (!config.offline) transport_.emplace(config.transport);
 }
 
+namespace {
+std::uint64_t fnv1a(std::span<const std::uint8_t> b) noexcept {
+  std::uint64_t h = 1469598103934665603ull;
+  for (const std::uint8_t c : b) h = (h ^ c) * 1099511628211ull;
+  return h | 1;  // never 0: 0 marks an empty slot
+}
+}  // namespace
+
+void Session::remember_sent(std::span<const std::uint8_t> bytes) noexcept {
+  sent_hash_[sent_next_] = fnv1a(bytes);
+  sent_next_ = (sent_next_ + 1) % kSentMemory;
+}
+
+bool Session::sent_recently(std::span<const std::uint8_t> bytes) const noexcept {
+  const std::uint64_t h = fnv1a(bytes);
+  for (const std::uint64_t s : sent_hash_)
+    if (s == h) return true;
+  return false;
+}
+
 bool Session::send_raw(std::uint32_t group, std::span<const std::uint8_t> bytes, std::uint8_t pdu_type) noexcept {
   if (!transmit(group, bytes)) {
     ++counters_.send_failures;

@@ -28,7 +28,10 @@ net::SessionConfig session_config(const BridgeOptions& o) {
     throw std::runtime_error("--app " + std::to_string(o.app) + ": with --net it must be 1-32767 (32768 and up carry cultural features)");
   if (o.site < 1 || o.site > 65535) throw std::runtime_error("--site " + std::to_string(o.site) + ": must be 1-65535");
   if (o.exercise < 1 || o.exercise > 255) throw std::runtime_error("--exercise " + std::to_string(o.exercise) + ": must be 1-255");
+  if (o.dis_version != 6 && o.dis_version != 7)
+    throw std::runtime_error("--dis-version " + std::to_string(o.dis_version) + ": must be 6 or 7");
   net::SessionConfig c;
+  c.protocol_version = static_cast<std::uint8_t>(o.dis_version);
   c.transport.url = o.url;
   c.transport.iface = o.iface;
   c.exercise_id = static_cast<std::uint8_t>(o.exercise);

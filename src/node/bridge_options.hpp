@@ -25,6 +25,7 @@ struct BridgeOptions {
   bool offline = false;                      // no socket (run --replay): sends go nowhere
   // Other simulators' munitions (models/munitions.toml); null: the bridge loads the bundled one.
   std::shared_ptr<const MunitionTable> munitions;
+  int dis_version = 7;                       // --dis-version: protocol version we send (6 or 7)
 };
 
 // Application ids at or above this carry cultural features (fixed objects).
@@ -36,7 +37,7 @@ double dis_timeout_from_env(double fallback);
 bool dis_pack_from_env();
 
 // The session of `o`; throws on an identity out of range (--app 1-32767, --site 1-65535,
-// --exercise 1-255), a --ttl out of 1-255, or an --aoi grid that cannot be made (net/aoi.hpp);
+// --exercise 1-255), a --dis-version other than 6 or 7, a --ttl out of 1-255, or an --aoi grid that cannot be made (net/aoi.hpp);
 // with --aoi the transport holds many groups and joins none at first.
 net::SessionConfig session_config(const BridgeOptions& o);
 // Annex C thresholds with the timeout `timeout_s`; a timeout shorter than the default (tests)

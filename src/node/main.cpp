@@ -37,6 +37,8 @@ Exit codes: 0 ok, 2 bad input (nothing written), 1 failure while running.)");
   run->add_option("--iface", o.iface, "local address multicast is sent and joined on (default 127.0.0.1)");
   run->add_option("--node", o.node, "this node's number: drives the vehicles with node = N")->check(CLI::Range(1, 65535));
   run->add_option("--exercise", o.exercise, "DIS exercise id (default 1)")->check(CLI::Range(1, 255));
+  run->add_option("--dis-version", o.dis_version, "DIS protocol version we send: 6 or 7 (default 7; both accepted)")
+      ->check(CLI::IsMember({6, 7}));
   run->add_option("--site", o.site, "DIS site (default 1)")->check(CLI::Range(1, 65535));
   run->add_option("--app", o.app, "DIS application (default = node)")->check(CLI::Range(1, 65535));
   run->add_option("--aoi", o.aoi_m, "area of interest: cells of CELL_M metres, one multicast group each (default off)")

@@ -7,7 +7,6 @@
 #include <stdexcept>
 
 #include "node/dis_mapping.hpp"
-#include "node/munition_codes.hpp"
 #include "node/pdu_build.hpp"
 
 namespace npsnet::node {
@@ -174,6 +173,19 @@ void NetBridge::receive(std::span<const std::uint8_t> datagram, double arrival_s
                                 [&](const net::FirePdu& p) { on_fire(p); },
                                 [&](const net::DetonationPdu& p) { on_detonation(p); },
                                 [&](const net::CollisionPdu& p) { on_collision(p); }});
+  if (!clash_reported_ && session_->counters().own_id_clash > 0) report_clash();
+}
+
+void NetBridge::report_clash() {
+  clash_reported_ = true;
+  std::fprintf(stderr,
+               "npsnet: net: another simulator sends PDUs as site %d application %d, our DIS identity: its "
+               "entities clash with ours and are ignored; give one of the two another --site/--app\n",
+               opt_.site, opt_.app);
+  auto ev = event("id_clash");
+  ev["site"] = opt_.site;
+  ev["application"] = opt_.app;
+  log_.write(ev);
 }
 
 void NetBridge::before_step(world::World& w) {
@@ -195,8 +207,7 @@ void NetBridge::on_cultural(const net::EntityStatePdu& p) {
   const int o = p.entity_id.entity - 1;
   const world::Kind& k = w.kinds[w.fixed.kind[o]];
   if (!same_type(k.dis, p.entity_type)) return;  // not the same object: other scenario or objects file
-  if (p.appearance >= k.states.size()) return;
-  const int to = static_cast<int>(p.appearance);
+  const int to = state_from_appearance(k, p.appearance);  // damage bits 3-4 (dis_mapping.hpp)
   if (to > fixed_net_state_[o]) fixed_net_state_[o] = static_cast<int16_t>(to);
   if (to > w.fixed.state[o]) {
     inject_.clear();
@@ -280,67 +291,6 @@ void NetBridge::on_collision(const net::CollisionPdu& p) {
   inject_.clear();
 }
 
-void NetBridge::on_fire(const net::FirePdu& p) {
-  const auto& w = sim_.world();
-  const int shooter = remotes_.index_of(p.firing_entity_id);
-  const MunitionEffect fx = munitions_->effect(p.descriptor, w.kinds);
-  auto ev = event("fire");
-  ev["shooter"] = shooter >= 0 ? w.ents.id[shooter] : id_text(p.firing_entity_id);
-  ev["munition"] = fx.kind >= 0 ? std::string(fx.name) : type_text(p.descriptor.munition_type);
-  ev["dis_type"] = type_text(p.descriptor.munition_type);
-  ev["warhead"] = fx.warhead;
-  ev["fuse"] = fuse_class(p.descriptor.fuse);
-  ev["quantity"] = p.descriptor.quantity;
-  ev["round"] = id_text(p.munition_id);
-  const int target = remotes_.index_of(p.target_entity_id);
-  ev["target"] = target >= 0 ? w.ents.id[target] : "";
-  const Eigen::Vector3d loc(p.location.x, p.location.y, p.location.z);
-  if (loc.allFinite()) {
-    const Vec3 l = w.terrain.frame().from_ecef(vv(loc));
-    ev["from"] = nlohmann::json::array({round3(l.x()), round3(l.y()), round3(l.z())});
-  }
-  ev["remote"] = true;
-  log_.write(ev);
-}
-
-void NetBridge::on_detonation(const net::DetonationPdu& p) {
-  const world::World& w = sim_.world();
-  const Eigen::Vector3d loc(p.location.x, p.location.y, p.location.z);
-  if (!loc.allFinite()) return;
-  const Vec3 point = w.terrain.frame().from_ecef(vv(loc));
-  if (!point.allFinite() || !w.terrain.contains(point.x(), point.y())) return;
-  const MunitionEffect fx = munitions_->effect(p.descriptor, w.kinds);
-  if (fx.kind < 0) return;  // the kinds file has no munition at all
-  const DetonationResultInfo res = detonation_result(p.detonation_result);
-  int hit = -1;
-  if (p.detonation_result == dis::kResultEntityImpact) {
-    hit = own_entity_of(p.target_entity_id);
-    if (hit < 0 && !(p.target_entity_id.site == opt_.site && p.target_entity_id.application == opt_.app))
-      hit = remotes_.index_of(p.target_entity_id);
-    if (hit >= 0 && !w.ents.active[hit]) hit = -1;
-  }
-  world::DetonationRecord d;
-  d.kind = fx.kind;
-  d.shooter = remotes_.index_of(p.firing_entity_id);
-  d.round = "rd" + id_text(p.exploding_entity_id);
-  d.target = hit;
-  d.point = point;
-  d.result = res.name;
-  const double agl = point.z() - w.terrain.height(point.x(), point.y());
-  if ((p.detonation_result == 0 || p.detonation_result == dis::kResultDetonation) && air_fuse(p.descriptor.fuse) &&
-      agl >= w.kinds[fx.kind].crater_radius_m)
-    d.result = "airburst";
-  d.decides_fixed = false;  // the firing node publishes the fixed objects its round changed
-  d.crater = fx.crater && res.crater;
-  d.blast = fx.blast && res.blast;
-  d.hit_destroys = fx.hit_destroys && res.blast;
-  d.quantity = std::max<int>(1, p.descriptor.quantity);
-  d.munition_name = fx.name;
-  d.warhead = fx.warhead;
-  d.fuse = fuse_class(p.descriptor.fuse);
-  sim_.inject_detonation(d);
-}
-
 // ---------------------------------------------------------------- decide ----
 
 bool NetBridge::decides(const collision::Contact& c) { return ownership_.decides(sim_.world(), remotes_, c); }
@@ -378,6 +328,7 @@ void NetBridge::publish_vehicles() {
       continue;
     }
     fill_entity_state(w, e, own_id(e), s, pubs_[i].algorithm(), app, static_cast<std::uint8_t>(opt_.exercise), t, es_);
+    es_.header.protocol_version = static_cast<std::uint8_t>(opt_.dis_version);  // packed datagrams too
     if (pack_ && !aoi_) {  // several Entity States to a datagram of at most 1400 octets
       if (!batch_.add(es_)) {
         flush_batch();

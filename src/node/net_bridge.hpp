@@ -4,6 +4,8 @@
 //   dis_mapping     DIS types <-> our kinds, damage <-> appearance, enumerations
 //   remote_entities vehicles of other nodes: join, pose, damage, timeout (and their events)
 //   pdu_build       Entity State / cultural feature / Fire / Detonation / Collision PDUs
+//   warfare_receive other simulators' Fire and Detonation (munition_table, munition_codes)
+//   sim_management  Stop/Freeze, Start/Resume, Remove Entity, Acknowledge
 //   ownership       who decides a contact between entities of two nodes
 //   area_of_interest --aoi: the cell group of each PDU, the groups this node holds
 // Contract (shared/ARCHITECTURE.md, Network):
@@ -15,8 +17,9 @@
 //  * Local vehicles (ents.local && ents.node == --node) go out as Entity State PDUs: ECEF
 //    position (m), DIS Euler angles (rad), ECEF velocity (m/s) and acceleration (m/s^2, the
 //    per-tick velocity change low-pass filtered over 0.5 s, zero at rest), yaw rate (rad/s,
-//    body z), timestamp = the scenario time of the state (after the tick's step), the kind's DIS type, marking = scenario id, damage in appearance
-//    bits 3-4 (dis_mapping.hpp), DR algorithm RVW, sent when the DrPublisher says so (1 m /
+//    body z), timestamp = the scenario time of the state (after the tick's step), the kind's
+//    DIS type, marking = scenario id, damage in appearance bits 3-4 (dis_mapping.hpp), DR
+//    algorithm RVW, sent when the DrPublisher says so (1 m /
 //    3 deg / 5 s heartbeat) or when the appearance changes. Entity number = entity index + 1
 //    (every node loads the same scenario, so indices agree). One PDU a datagram (Wireshark 4.0
 //    decodes only the first PDU of a datagram), at most 128 a tick (the rest follow on the next
@@ -32,7 +35,8 @@
 //    to its own entity once (a bounce by collision::bounce_impulse).
 //  * Fixed objects whose state changes are published as cultural-feature Entity States (kind 5,
 //    the object kind's DIS type): entity id (site, 0x8000 | application, object index + 1),
-//    appearance = state index; heartbeat 5 s. Receivers move the same object forward to that
+//    damage in the standard appearance bits 3-4 (as vehicles, dis_mapping.hpp; was the state
+//    index); heartbeat 5 s. Receivers move the same object forward to that
 //    state (a state never goes back). Objects past index 65534 cannot be numbered: counted and
 //    reported once on stderr.
 //  * Every local fire sends a Fire PDU and every local detonation a Detonation PDU (munition
@@ -51,6 +55,11 @@
 //    cultural feature to its object's cell, the end-of-run deactivation to each vehicle's cell.
 //    NPSNET_DIS_PACK is ignored with --aoi (a datagram goes to one group).
 //  * Counters (net::Counters::summary) are printed at the end of a run and on SIGUSR1.
+//  * PDUs with our (site, application) that are not our echo (net::Session: not a datagram we
+//    sent) mean another simulator uses our identity: reported once on stderr and as an event
+//    id_clash (site, application); its PDUs are ignored.
+//  * --dis-version 6|7: the protocol version of everything we send (default 7); 5, 6 and 7 are
+//    received.
 // Every change to the world goes through world::Changes (Simulation::inject), except the remote
 // state stage (remote_entities.hpp: pose, velocity, active flag of remote entities).
 // Nothing received from the network throws or aborts; hot paths allocate only when an entity
@@ -153,6 +162,7 @@ class NetBridge {
   void on_start_resume(const net::StartResumePdu& p);
   void on_remove_entity(const net::RemoveEntityPdu& p);
   void flush_batch();
+  void report_clash();
   // The group a PDU about the local point p goes to (the --net destination without --aoi).
   std::uint32_t group_at(const Vec3& p) const { return aoi_ ? aoi_->group_at(p) : net::Session::kDestination; }
 
@@ -187,6 +197,7 @@ class NetBridge {
   net::EntityStatePdu es_;      // reused
   net::DatagramBuilder batch_;  // this tick's Entity States, packed (1400 octets a datagram)
   bool pack_ = false;           // NPSNET_DIS_PACK=1
+  bool clash_reported_ = false;  // another simulator using our (site, application): said once
   size_t rr_ = 0;               // first local vehicle looked at next tick (send cap round robin)
 
   // Fixed objects: the state last published or heard (-1: never), heartbeat times.

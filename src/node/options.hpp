@@ -18,6 +18,7 @@ struct RunOptions {
   std::string net = "off";
   std::string iface = "127.0.0.1";
   int node = 1, exercise = 1, site = 1, app = -1;  // app: default = node
+  int dis_version = 7;                         // --dis-version: protocol version we send (6 | 7)
   std::optional<double> start_at;              // with --replay: the recording's UNIX time of t = 0
   std::filesystem::path replay;                // --replay: a recording as the remote side, no network
   double aoi_m = 0;          // --aoi CELL_M: area-of-interest cell groups; 0 = off (one group)

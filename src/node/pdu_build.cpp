@@ -57,7 +57,7 @@ void fill_cultural(const world::World& w, int o, const net::EntityId& id, net::E
   const Vec3 eu = frame.to_dis_euler(w.fixed.pos[o], w.fixed.heading_deg[o], 0, 0);
   s.orientation = {eu.x(), eu.y(), eu.z()};
   net::write_kinematics(s, net::DrAlgorithm::Static, p);
-  p.appearance = w.fixed.state[o];
+  p.appearance = damage_appearance(w.kinds[w.fixed.kind[o]], w.fixed.state[o]);  // bits 3-4, as for vehicles
   p.marking = marking_of(w.fixed.id[o]);
   p.header.timestamp = net::relative_timestamp(w.t);
 }

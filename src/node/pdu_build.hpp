@@ -23,7 +23,7 @@ void fill_entity_state(const world::World& w, int e, const net::EntityId& id, co
                        net::DrAlgorithm algorithm, std::uint32_t appearance, std::uint8_t exercise, double state_t_s,
                        net::EntityStatePdu& es);
 
-// A fixed object as a static cultural feature (kind 5): appearance = its state index.
+// A fixed object as a static cultural feature (kind 5): its damage in appearance bits 3-4.
 void fill_cultural(const world::World& w, int object, const net::EntityId& id, net::EntityStatePdu& p);
 
 // Fire of local munition m (just launched): location, velocity and range from the world.

@@ -76,7 +76,7 @@ int run_command(const RunOptions& opt) {
     }
   }
   BridgeOptions net_opt{o.net, o.iface, o.node, o.exercise, o.site, o.app > 0 ? o.app : o.node, dis_timeout_s,
-                              o.aoi_m, o.aoi_groups, o.ttl, replay_on, nullptr};
+                              o.aoi_m, o.aoi_groups, o.ttl, replay_on, nullptr, o.dis_version};
   std::unique_ptr<net::Session> session;  // opened before anything is written
 #ifdef NPSNET_HAVE_RECORD
   std::unique_ptr<ReplayFeed> feed;

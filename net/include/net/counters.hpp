@@ -1,7 +1,7 @@
 // net/counters.hpp — what the receive and send paths did, for logs and tests.
 // All counts are totals since construction (or reset()). A datagram's PDUs are each counted once
 // in exactly one of: decoded[type], skipped_unknown_type, skipped_version, rejected[reason],
-// own_echo_ignored, other_exercise_ignored; a rejection that stops the walk of a datagram
+// own_echo_ignored, own_id_clash, other_exercise_ignored; a rejection that stops the walk of a datagram
 // (truncated_header, length_below_header, length_exceeds_data) counts the unreadable rest as
 // that one rejection.
 #pragma once
@@ -22,6 +22,9 @@ struct Counters {
   std::uint64_t skipped_version = 0;
   std::array<std::uint64_t, kDecodeErrorCount> rejected{};  // by DecodeError
   std::uint64_t own_echo_ignored = 0;
+  // PDUs with our (site, application) in a datagram we did not send: another simulator uses
+  // our identity (its PDUs are ignored like our echo, and counted here).
+  std::uint64_t own_id_clash = 0;
   std::uint64_t other_exercise_ignored = 0;
   std::array<std::uint64_t, 256> sent{};         // by PDU type
   std::uint64_t datagrams_sent = 0;
@@ -45,7 +48,7 @@ struct Counters {
   // One line, zero entries left out, e.g.
   // "datagrams 3 pdus 5 | decoded entity_state=2 fire=1 | skipped unknown_type=1 version=0 |
   //  rejected length_exceeds_data=1 | ignored own_echo=0 other_exercise=0 | sent entity_state=4"
-  // followed, once a group was joined through the area of interest, by
+  // (" own_id_clash=N" after own_echo when any), followed, once a group was joined through the area of interest, by
   // " | aoi groups=12 joins=15 leaves=3 join_failures=0".
   std::string summary() const;
 };

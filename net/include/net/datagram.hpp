@@ -36,6 +36,9 @@ struct ReceiveFilter {
   bool ignore_own = false;       // when true, PDUs from (site, application) are dropped
   std::uint16_t site = 1;
   std::uint16_t application = 1;
+  // Whether the datagram walked now is one we sent (our echo): its own PDUs count as
+  // own_echo_ignored, else as own_id_clash (Session::parse sets it per datagram).
+  bool echo = true;
 };
 
 // The entity a received PDU speaks for (the one whose site/application identify the sender).
@@ -62,6 +65,7 @@ class DatagramParser {
  public:
   explicit DatagramParser(ReceiveFilter filter = {}) : filter_(filter) {}
   void set_filter(const ReceiveFilter& f) noexcept { filter_ = f; }
+  void set_echo(bool echo) noexcept { filter_.echo = echo; }
   const ReceiveFilter& filter() const noexcept { return filter_; }
 
   // Returns the number of PDUs handed to the visitor.

@@ -15,6 +15,9 @@
 //  * poll_datagrams(f) drains the waiting datagrams as raw bytes, f(std::span<const uint8_t>);
 //    parse(datagram, visitor) walks one datagram (from the socket, a recording or a test) through
 //    the session's filter and counters exactly as poll does.
+//  * Our own (site, application) in a received datagram: our echo when the datagram is one of
+//    the last 1024 we sent (same bytes), else another simulator using our identity
+//    (Counters::own_id_clash); both are ignored.
 //  * SessionConfig::offline: no socket at all (a node fed from a recording): send() encodes and
 //    counts as usual, and the datagram goes nowhere; poll() finds nothing; transport() must not
 //    be called.
@@ -39,6 +42,9 @@ struct SessionConfig {
   bool ignore_own_echo = true;   // drop PDUs from our (site, application)
   bool filter_exercise = true;   // drop PDUs of other exercises
   bool offline = false;          // no socket: sends are counted and dropped (replay of a recording)
+  // Protocol version written into every PDU sent alone (6 or 7: the same layouts for our types;
+  // both are received). A DatagramBuilder's PDUs keep the version their headers hold.
+  std::uint8_t protocol_version = kProtocolVersion7;
 };
 
 class Session {
@@ -59,6 +65,7 @@ class Session {
       ++counters_.send_failures;
       return false;
     }
+    buffer_[0] = config_.protocol_version;
     buffer_[1] = config_.exercise_id;
     return send_raw(group, std::span<const std::uint8_t>(buffer_.data(), r.value()),
                     static_cast<std::uint8_t>(buffer_[2]));
@@ -82,6 +89,7 @@ class Session {
   }
   template <class Visitor>
   std::size_t parse(std::span<const std::uint8_t> datagram, Visitor&& visitor) {
+    parser_.set_echo(sent_recently(datagram));
     return parser_.parse(datagram, counters_, visitor);
   }
 
@@ -98,9 +106,16 @@ class Session {
  private:
   bool send_raw(std::uint32_t group, std::span<const std::uint8_t> bytes, std::uint8_t pdu_type) noexcept;
   bool transmit(std::uint32_t group, std::span<const std::uint8_t> bytes) noexcept {
+    remember_sent(bytes);
     if (!transport_) return true;  // offline: counted, sent nowhere
     return group == kDestination ? transport_->send(bytes) : transport_->send_to(group, bytes);
   }
+  // Our echo vs a clash: hashes of the last kSentMemory datagrams we sent (FNV-1a, 64 bits).
+  void remember_sent(std::span<const std::uint8_t> bytes) noexcept;
+  bool sent_recently(std::span<const std::uint8_t> bytes) const noexcept;
+  static constexpr std::size_t kSentMemory = 1024;  // > a tick's sends (128 capped + fires)
+  std::array<std::uint64_t, kSentMemory> sent_hash_{};
+  std::size_t sent_next_ = 0;
 
   SessionConfig config_;
   std::optional<UdpTransport> transport_;  // empty when offline

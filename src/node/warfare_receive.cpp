@@ -1,0 +1,79 @@
+// The bridge's warfare receive side (Fire and Detonation PDUs of other simulators): what their
+// munition is here (munition_table.hpp) and what its detonation result allows
+// (munition_codes.hpp). Contract in net_bridge.hpp.
+#include <algorithm>
+#include <cmath>
+
+#include "node/dis_mapping.hpp"
+#include "node/munition_codes.hpp"
+#include "node/net_bridge.hpp"
+
+namespace npsnet::node {
+
+namespace {
+double round3(double v) { return std::round(v * 1000.0) / 1000.0; }
+Vec3 vv(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+}  // namespace
+
+void NetBridge::on_fire(const net::FirePdu& p) {
+  const auto& w = sim_.world();
+  const int shooter = remotes_.index_of(p.firing_entity_id);
+  const MunitionEffect fx = munitions_->effect(p.descriptor, w.kinds);
+  auto ev = event("fire");
+  ev["shooter"] = shooter >= 0 ? w.ents.id[shooter] : id_text(p.firing_entity_id);
+  ev["munition"] = fx.kind >= 0 ? std::string(fx.name) : type_text(p.descriptor.munition_type);
+  ev["dis_type"] = type_text(p.descriptor.munition_type);
+  ev["warhead"] = fx.warhead;
+  ev["fuse"] = fuse_class(p.descriptor.fuse);
+  ev["quantity"] = p.descriptor.quantity;
+  ev["round"] = id_text(p.munition_id);
+  const int target = remotes_.index_of(p.target_entity_id);
+  ev["target"] = target >= 0 ? w.ents.id[target] : "";
+  const Eigen::Vector3d loc(p.location.x, p.location.y, p.location.z);
+  if (loc.allFinite()) {
+    const Vec3 l = w.terrain.frame().from_ecef(vv(loc));
+    ev["from"] = nlohmann::json::array({round3(l.x()), round3(l.y()), round3(l.z())});
+  }
+  ev["remote"] = true;
+  log_.write(ev);
+}
+
+void NetBridge::on_detonation(const net::DetonationPdu& p) {
+  const world::World& w = sim_.world();
+  const Eigen::Vector3d loc(p.location.x, p.location.y, p.location.z);
+  if (!loc.allFinite()) return;
+  const Vec3 point = w.terrain.frame().from_ecef(vv(loc));
+  if (!point.allFinite() || !w.terrain.contains(point.x(), point.y())) return;
+  const MunitionEffect fx = munitions_->effect(p.descriptor, w.kinds);
+  if (fx.kind < 0) return;  // the kinds file has no munition at all
+  const DetonationResultInfo res = detonation_result(p.detonation_result);
+  int hit = -1;
+  if (p.detonation_result == dis::kResultEntityImpact) {
+    hit = own_entity_of(p.target_entity_id);
+    if (hit < 0 && !(p.target_entity_id.site == opt_.site && p.target_entity_id.application == opt_.app))
+      hit = remotes_.index_of(p.target_entity_id);
+    if (hit >= 0 && !w.ents.active[hit]) hit = -1;
+  }
+  world::DetonationRecord d;
+  d.kind = fx.kind;
+  d.shooter = remotes_.index_of(p.firing_entity_id);
+  d.round = "rd" + id_text(p.exploding_entity_id);
+  d.target = hit;
+  d.point = point;
+  d.result = res.name;
+  const double agl = point.z() - w.terrain.height(point.x(), point.y());
+  if ((p.detonation_result == 0 || p.detonation_result == dis::kResultDetonation) && air_fuse(p.descriptor.fuse) &&
+      agl >= w.kinds[fx.kind].crater_radius_m)
+    d.result = "airburst";
+  d.decides_fixed = false;  // the firing node publishes the fixed objects its round changed
+  d.crater = fx.crater && res.crater;
+  d.blast = fx.blast && res.blast;
+  d.hit_destroys = fx.hit_destroys && res.blast;
+  d.quantity = std::max<int>(1, p.descriptor.quantity);
+  d.munition_name = fx.name;
+  d.warhead = fx.warhead;
+  d.fuse = fuse_class(p.descriptor.fuse);
+  sim_.inject_detonation(d);
+}
+
+}  // namespace npsnet::node

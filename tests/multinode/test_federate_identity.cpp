@@ -1,0 +1,78 @@
+// Foreign entities and identity (issue 10, defect 6), through the real path: a running node on
+// loopback multicast and peers.
+//  * A peer using our own (site 1, application 1) was dropped silently as if it were our echo;
+//    now it is reported once (stderr and an id_clash event), and our real echo never is.
+//  * --dis-version 6 sends protocol version 6 (default 7).
+//  * Cultural features carry damage in the standard appearance bits 3-4 (the old node read the
+//    appearance as a state index, so a peer's "damaged" tree (bits 3-4 = 1, appearance 8) was
+//    ignored).
+#include <gtest/gtest.h>
+
+#include "peer_support.hpp"
+
+TEST(FederateIdentity, ClashReportedOnceEchoNeverDisVersionSix) {
+  const auto w = fed::world_of("federate.toml");
+  lan::Procs procs;
+  // Heartbeat 0.5 s: our own echo comes back several times before the clash.
+  auto node = fed::start_node(procs, "fed_identity", "federate.toml", 4.0, {"--dis-version", "6"},
+                              {"NPSNET_DIS_TIMEOUT_S=1.2"});
+  net::Session listener(fed::peer_config(node.port));
+  std::vector<std::uint8_t> versions;
+  auto visit = net::Overloaded{[&](const net::EntityStatePdu& p) {
+    if (p.entity_id.site == 1 && p.entity_id.application == 1 && p.entity_id.entity != 40)  // not the impostor
+      versions.push_back(p.header.protocol_version);
+  }};
+  fed::poll_until(listener, node.start + 2.0, visit);
+  const double clash_at = lan::unix_now() - node.start;
+  {
+    net::Session impostor(fed::peer_config(node.port, 1));  // site 1, application 1: ours
+    net::EntityStatePdu es;
+    es.entity_id = impostor.entity_id(40);
+    es.entity_type = {1, 1, 225, 1, 1, 3, 0};
+    es.marking = net::make_marking("imp").value();
+    es.location = fed::ecef(w, 300, 300);
+    es.dead_reckoning.algorithm = 1;
+    for (int i = 0; i < 5; ++i) impostor.send(es);
+  }
+  fed::poll_until(listener, node.start + 4.5, visit);
+  ASSERT_EQ(procs.wait(node.pid, 30.0), 0) << lan::read_text(node.out);
+  const auto ev = lan::read_events(node.events);
+  const auto clash = fed::of_type(ev, "id_clash");
+  ASSERT_EQ(clash.size(), 1u) << "once, however many PDUs";
+  EXPECT_GE(clash[0]["t"].get<double>(), clash_at - 0.2) << "our own echo before it is not a clash";
+  EXPECT_EQ(clash[0]["site"], 1);
+  EXPECT_EQ(clash[0]["application"], 1);
+  EXPECT_NE(lan::read_text(node.out).find("site 1 application 1"), std::string::npos) << lan::read_text(node.out);
+  EXPECT_TRUE(fed::of_type(ev, "entity_joined").empty()) << "the impostor's entities are not joined";
+  ASSERT_FALSE(versions.empty());
+  for (auto v : versions) EXPECT_EQ(v, 6);
+  std::filesystem::remove_all(node.dir);
+}
+
+TEST(FederateIdentity, CulturalFeatureDamageInAppearanceBits3And4) {
+  lan::Procs procs;
+  auto node = fed::start_node(procs, "fed_cultural", "federate.toml", 3.0);
+  net::Session peer(fed::peer_config(node.port));
+  const auto w = fed::world_of("federate.toml");
+  net::EntityStatePdu tree;  // treeA, object 0: entity 1 of the peer's cultural application
+  tree.entity_id = {1, 0x8000 | 50, 1};
+  tree.entity_type = {5, 1, 0, 1, 1, 0, 0};
+  tree.location = fed::ecef(w, 310, 110);
+  tree.appearance = 1u << 3;  // damage: slight
+  std::vector<net::EntityStatePdu> heard;
+  auto visit = net::Overloaded{[&](const net::EntityStatePdu& p) {
+    if (p.entity_type.kind == 5 && p.entity_id.application == (0x8000 | 1)) heard.push_back(p);
+  }};
+  fed::poll_until(peer, node.start + 0.5, visit);
+  peer.send(tree);
+  fed::poll_until(peer, node.start + 1.5, visit);
+  tree.appearance = 3u << 3;  // destroyed
+  peer.send(tree);
+  fed::poll_until(peer, node.start + 3.5, visit);
+  ASSERT_EQ(procs.wait(node.pid, 30.0), 0) << lan::read_text(node.out);
+  std::vector<std::string> states;
+  for (const auto& d : fed::of_type(lan::read_events(node.events), "damage"))
+    if (d["object"] == "treeA") states.push_back(d["to_state"]);
+  EXPECT_EQ(states, (std::vector<std::string>{"damaged", "stump"}));
+  std::filesystem::remove_all(node.dir);
+}
