@@ -122,6 +122,7 @@ std::string NetBridge::summary() const {
   std::string r = "  net: " + session_->counters().summary() + b;
   if (fixed_unnumbered_)
     r += "\n  net: " + std::to_string(fixed_unnumbered_) + " fixed-object changes not published (index past 65534)";
+  r += remotes_.listing(clock_s());
   return r;
 }
 

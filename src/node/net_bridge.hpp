@@ -54,7 +54,8 @@
 //    a Collision PDU to the group of the colliding entity (whose owner holds that cell), a
 //    cultural feature to its object's cell, the end-of-run deactivation to each vehicle's cell.
 //    NPSNET_DIS_PACK is ignored with --aoi (a datagram goes to one group).
-//  * Counters (net::Counters::summary) are printed at the end of a run and on SIGUSR1.
+//  * Counters (net::Counters::summary) and the remote entities (id, safe marking, type, owner,
+//    last update age, damage) are printed at the end of a run and on SIGUSR1.
 //  * PDUs with our (site, application) that are not our echo (net::Session: not a datagram we
 //    sent) mean another simulator uses our identity: reported once on stderr and as an event
 //    id_clash (site, application); its PDUs are ignored.
@@ -114,7 +115,8 @@ class NetBridge {
   void after_tick(const TickReport& r);
 
   const net::Counters& counters() const { return session_->counters(); }
-  // Counters plus the Entity State rate of the local vehicles, several lines.
+  // Counters plus the Entity State rate of the local vehicles, then one line per remote entity
+  // (RemoteEntities::listing: id, marking made safe, type, owner, last update age, damage).
   std::string summary() const;
   // Entity State PDUs sent for local ground vehicles, their number, and seconds published.
   std::uint64_t ground_es_sent() const { return ground_es_sent_; }

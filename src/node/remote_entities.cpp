@@ -1,6 +1,7 @@
 #include "node/remote_entities.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "node/dis_mapping.hpp"
 
@@ -163,6 +164,26 @@ void RemoteEntities::expire(double now_s) {
     ev["kind"] = w.kinds[w.ents.kind[e]].name;
     log_.write(ev);
   });
+}
+
+std::string RemoteEntities::listing(double now_s, std::size_t max_lines) const {
+  const auto& w = sim_.world();
+  std::string out;
+  const std::size_t n = table_.size();
+  for (std::size_t i = 0; i < n && i < max_lines; ++i) {
+    const net::RemoteEntity& r = table_[i];
+    const int e = index_of(r.id);
+    const std::string kind = e >= 0 ? w.kinds[w.ents.kind[e]].name : "none";
+    const std::string state = e >= 0 ? w.kinds[w.ents.kind[e]].states[w.ents.state[e]] : "unknown";
+    char b[160];
+    std::snprintf(b, sizeof b, " owner site %u app %u last update %.1f s ago damage ", r.id.site, r.id.application,
+                  now_s - r.last_update_s);
+    out += "\n  remote " + id_text(r.id) + " " + nlohmann::json(net::marking_text(r.marking)).dump() + " type " +
+           type_text(r.type) + " (" + kind + ")" + b + state + " (appearance damage " +
+           std::to_string(damage_bits(r.appearance)) + ")";
+  }
+  if (n > max_lines) out += "\n  remote ... " + std::to_string(n - max_lines) + " more";
+  return out;
 }
 
 void RemoteEntities::set_poses(double now_s) {
