@@ -9,6 +9,7 @@
 
 #include "core/constants.hpp"
 #include "net/net.hpp"
+#include "node/entity_type_table.hpp"
 #include "node/munition_table.hpp"
 
 namespace npsnet::node {
@@ -25,6 +26,8 @@ struct BridgeOptions {
   bool offline = false;                      // no socket (run --replay): sends go nowhere
   // Other simulators' munitions (models/munitions.toml); null: the bridge loads the bundled one.
   std::shared_ptr<const MunitionTable> munitions;
+  // Other simulators' entity types (models/entity_types.toml); null: the bundled one.
+  std::shared_ptr<const EntityTypeTable> entity_types;
   int dis_version = 7;                       // --dis-version: protocol version we send (6 or 7)
 };
 

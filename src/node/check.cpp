@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include "node/capture_commands.hpp"
+#include "node/entity_type_table.hpp"
 #include "node/munition_table.hpp"
 #include "node/options.hpp"
 #include "node/world_summary.hpp"
@@ -46,6 +47,11 @@ void check_one(const std::filesystem::path& f, std::vector<world::Problem>& prob
         const std::string crs = raster_crs_name(sc.terrain);
         if (const std::string warn = origin_warning(sc, w, crs); !warn.empty()) notes += warn + "\n";
         notes += fname + ": world\n" + world_summary(sc, w, crs);
+      } else if (t.contains("entity")) {  // models/entity_types.toml
+        const auto table = EntityTypeTable::load(f);
+        world::ModelLibrary models;
+        const auto ps = table.check_kinds(world::KindTable::load(world::default_kinds_file(), models));
+        problems.insert(problems.end(), ps.begin(), ps.end());
       } else if (t.contains("warhead") || t.contains("munition")) {  // models/munitions.toml
         const auto table = MunitionTable::load(f);
         world::ModelLibrary models;

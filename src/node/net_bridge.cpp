@@ -46,7 +46,7 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
       sim_(sim),
       log_(log),
       session_(std::move(session)),
-      remotes_(dr_thresholds(o.timeout_s), sim, log),
+      remotes_(dr_thresholds(o.timeout_s), sim, log, o.entity_types),
       ownership_(net::EntityId{static_cast<std::uint16_t>(o.site), static_cast<std::uint16_t>(o.app), 0}),
       cultural_app_(static_cast<std::uint16_t>(kCulturalAppBit | o.app)) {
   if (!session_) throw std::runtime_error("--net: no session");

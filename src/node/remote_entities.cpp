@@ -18,8 +18,13 @@ bool usable(const Vec3& p, const Vec3& v, const Vec3& hpr) {
 double round3(double v) { return std::round(v * 1000.0) / 1000.0; }
 }  // namespace
 
-RemoteEntities::RemoteEntities(const net::DrThresholds& t, Simulation& sim, EventLog& log)
-    : sim_(sim), log_(log), table_(t) {
+RemoteEntities::RemoteEntities(const net::DrThresholds& t, Simulation& sim, EventLog& log,
+                               std::shared_ptr<const EntityTypeTable> types)
+    : sim_(sim),
+      log_(log),
+      types_(types ? std::move(types)
+                   : std::make_shared<const EntityTypeTable>(EntityTypeTable::load(EntityTypeTable::default_file()))),
+      table_(t) {
   remote_id_.assign(sim_.world().ents.size(), net::EntityId{});
 }
 
@@ -50,7 +55,7 @@ nlohmann::json RemoteEntities::event(const char* type) const {
 int RemoteEntities::kind_for(int e, const net::EntityType& t) const {
   const auto& w = sim_.world();
   const int k = w.ents.kind[e];
-  return same_type(w.kinds[k].dis, t) ? k : vehicle_kind_for(w.kinds, t);
+  return same_type(w.kinds[k].dis, t) ? k : types_->resolve(t, w.kinds).kind;
 }
 
 void RemoteEntities::on_entity_state(const net::EntityStatePdu& p, double now_s, double unix_now_s) {
@@ -126,7 +131,19 @@ void RemoteEntities::joined(std::size_t ri) {
         inject(ch);
       }
     } else {
-      kind = vehicle_kind_for(w.kinds, r.type);
+      const EntityChoice c = types_->resolve(r.type, w.kinds);
+      if (c.kind < 0 && *c.track) {  // tracked, not simulated: no model for what it is
+        auto ev = event("entity_joined");
+        ev["id"] = marking.empty() ? id_text(r.id) : marking;
+        ev["entity"] = id_text(r.id);
+        ev["marking"] = marking;
+        ev["kind"] = type_text(r.type);
+        ev["model"] = "none";
+        ev["tracked_as"] = c.track;
+        log_.write(ev);
+        return;
+      }
+      kind = c.kind;
       if (kind < 0) return;  // no vehicle kind at all in this kinds file
       const std::string name = marking.empty() ? id_text(r.id) : marking;
       e = ents.add(name, kind, Vec3::Zero(), 0.f, static_cast<float>(w.kinds[kind].radius_m));

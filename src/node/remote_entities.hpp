@@ -1,7 +1,10 @@
 // Remote-entity bookkeeping of the bridge: vehicles of other nodes, tied to world entities.
 //  * Vehicles of other nodes start local = 0 and inactive; their first Entity State activates
-//    them (matched by marking; an unknown marking adds an entity of the kind whose DIS type
-//    matches, or the generic kind of its domain; dis_mapping.hpp). A scenario vehicle whose owner
+//    them (matched by marking; an unknown marking adds an entity of the kind its DIS type has
+//    in models/entity_types.toml, entity_type_table.hpp: our kind of that exact type, else the
+//    most specific entry, e.g. the generic kind of its domain). A type the table tracks without
+//    a model (lifeform, cultural feature, environmental, ...) is logged (entity_joined with
+//    model "none" and tracked_as) and listed, but not put into the world. A scenario vehicle whose owner
 //    sends another DIS type takes the kind of that type through world::Changes (to_kind).
 //  * Each tick, before dynamics, a remote entity's pose and velocity (the dead-reckoned one at
 //    that moment, world axes: v + a t, body axes turned into the world) are set from
@@ -14,10 +17,12 @@
 // Ids: world entities keep their remote id across timeouts, so a rejoin reuses the entity.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
 #include "net/net.hpp"
+#include "node/entity_type_table.hpp"
 #include "node/event_log.hpp"
 #include "node/simulation.hpp"
 
@@ -25,7 +30,9 @@ namespace npsnet::node {
 
 class RemoteEntities {
  public:
-  RemoteEntities(const net::DrThresholds& t, Simulation& sim, EventLog& log);
+  // types: the entity-type table (null: the bundled models/entity_types.toml).
+  RemoteEntities(const net::DrThresholds& t, Simulation& sim, EventLog& log,
+                 std::shared_ptr<const EntityTypeTable> types = nullptr);
 
   // The remote id of world entity e (site 0: not a remote entity).
   net::EntityId id_of(int e) const;
@@ -61,6 +68,7 @@ class RemoteEntities {
 
   Simulation& sim_;
   EventLog& log_;
+  std::shared_ptr<const EntityTypeTable> types_;
   net::RemoteEntityTable table_;
   struct IdHash {
     std::size_t operator()(const net::EntityId& e) const noexcept {

@@ -76,7 +76,7 @@ int run_command(const RunOptions& opt) {
     }
   }
   BridgeOptions net_opt{o.net, o.iface, o.node, o.exercise, o.site, o.app > 0 ? o.app : o.node, dis_timeout_s,
-                              o.aoi_m, o.aoi_groups, o.ttl, replay_on, nullptr, o.dis_version};
+                              o.aoi_m, o.aoi_groups, o.ttl, replay_on, nullptr, nullptr, o.dis_version};
   std::unique_ptr<net::Session> session;  // opened before anything is written
 #ifdef NPSNET_HAVE_RECORD
   std::unique_ptr<ReplayFeed> feed;
@@ -97,6 +97,7 @@ int run_command(const RunOptions& opt) {
   if (net_on || replay_on) {
     try {
       net_opt.munitions = std::make_shared<const MunitionTable>(MunitionTable::load(MunitionTable::default_file()));
+      net_opt.entity_types = std::make_shared<const EntityTypeTable>(EntityTypeTable::load(EntityTypeTable::default_file()));
     } catch (const world::InputError& e) {
       print_problems(e);
       return 2;

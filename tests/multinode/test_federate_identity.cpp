@@ -8,6 +8,8 @@
 //    ignored).
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "peer_support.hpp"
 
 TEST(FederateIdentity, ClashReportedOnceEchoNeverDisVersionSix) {
@@ -74,5 +76,48 @@ TEST(FederateIdentity, CulturalFeatureDamageInAppearanceBits3And4) {
   for (const auto& d : fed::of_type(lan::read_events(node.events), "damage"))
     if (d["object"] == "treeA") states.push_back(d["to_state"]);
   EXPECT_EQ(states, (std::vector<std::string>{"damaged", "stump"}));
+  std::filesystem::remove_all(node.dir);
+}
+
+// A soldier (life form, entity kind 3) and another simulator's building (cultural feature,
+// kind 5, an ordinary application id) were both made generic ground vehicles (a 60-tonne tank
+// model that collides); now they are tracked as what they are and not put into the world:
+// the peer's soldier standing on our parked t1 collides with nothing.
+TEST(FederateIdentity, LifeformsAndForeignCulturalFeaturesAreNotVehicles) {
+  const auto w = fed::world_of("federate.toml");
+  lan::Procs procs;
+  auto node = fed::start_node(procs, "fed_lifeform", "federate.toml", 2.5);
+  net::Session peer(fed::peer_config(node.port));
+  net::EntityStatePdu soldier;
+  soldier.entity_id = peer.entity_id(7);
+  soldier.entity_type = {3, 1, 225, 1, 0, 0, 0};
+  soldier.marking = net::make_marking("inf1").value();
+  soldier.location = fed::ecef(w, 200, 200);  // on t1
+  soldier.dead_reckoning.algorithm = 1;
+  auto building = soldier;
+  building.entity_id = peer.entity_id(8);
+  building.entity_type = {5, 1, 225, 3, 1, 0, 0};
+  building.marking = net::make_marking("bldg").value();
+  building.location = fed::ecef(w, 250, 250);
+  auto jeep = soldier;  // a land platform no kind has: still a generic ground vehicle
+  jeep.entity_id = peer.entity_id(9);
+  jeep.entity_type = {1, 1, 222, 6, 1, 0, 0};
+  jeep.marking = net::make_marking("j9").value();
+  jeep.location = fed::ecef(w, 300, 300);
+  for (int i = 0; i < 5; ++i) {
+    fed::sleep_until(node.start + 0.3 + 0.3 * i);
+    peer.send(soldier), peer.send(building), peer.send(jeep);
+  }
+  ASSERT_EQ(procs.wait(node.pid, 30.0), 0) << lan::read_text(node.out);
+  const auto ev = lan::read_events(node.events);
+  std::map<std::string, nlohmann::json> joined;
+  for (const auto& e : fed::of_type(ev, "entity_joined")) joined[e["marking"].get<std::string>()] = e;
+  ASSERT_EQ(joined.size(), 3u);
+  EXPECT_EQ(joined["inf1"]["tracked_as"], "lifeform");
+  EXPECT_EQ(joined["inf1"]["model"], "none");
+  EXPECT_EQ(joined["bldg"]["tracked_as"], "cultural_feature");
+  EXPECT_EQ(joined["j9"]["model"], "generic_ground");
+  for (const auto& c : fed::of_type(ev, "collision")) EXPECT_NE(c["b"], "inf1") << c.dump();
+  for (const auto& c : fed::of_type(ev, "collision")) EXPECT_NE(c["a"], "inf1") << c.dump();
   std::filesystem::remove_all(node.dir);
 }

@@ -1,0 +1,92 @@
+#include "node/entity_type_table.hpp"
+
+#include <algorithm>
+
+#include "node/dis_mapping.hpp"
+
+namespace npsnet::node {
+
+namespace {
+int vehicle_kind_named(const world::KindTable& kinds, const std::string& name) {
+  const int k = name.empty() ? -1 : kinds.find(name);
+  return k >= 0 && kinds[k].mobile() && kinds[k].mobility != world::Mobility::Munition ? k : -1;
+}
+}  // namespace
+
+std::filesystem::path EntityTypeTable::default_file() {
+  return std::filesystem::path(NPSNET_SOURCE_DIR) / "models" / "entity_types.toml";
+}
+
+EntityTypeTable EntityTypeTable::load(const std::filesystem::path& file) {
+  const std::string fname = file.string();
+  const toml::table root = world::parse_toml_file(fname);
+  std::vector<world::Problem> problems;
+  world::TomlReader r(fname, problems);
+  EntityTypeTable out;
+  out.file_ = fname;
+  r.unknown_keys(root, "", {"default", "entity"});
+  // kind = "..." or track = "...", exactly one.
+  auto target = [&](const toml::table& t, const std::string& p, Entry& e) {
+    e.kind = r.string(t, "kind", p + "kind", false, r.line(&t)).value_or("");
+    e.track = r.string(t, "track", p + "track", false, r.line(&t)).value_or("");
+    e.line = r.line(t.get("kind"));
+    e.field = p + "kind";
+    if (e.kind.empty() == e.track.empty()) r.problem(&t, p + "kind", "give either kind (a vehicle kind) or track (what it is)");
+  };
+  if (const auto* d = root["default"].as_table()) {
+    r.unknown_keys(*d, "default.", {"kind", "track"});
+    target(*d, "default.", out.default_);
+  } else {
+    r.problem(1, "default", "a [default] table with the kind of an entity no entry covers is required");
+  }
+  if (const toml::node* n = root.get("entity")) {
+    const toml::array* a = n->as_array();
+    if (!a) r.problem(n, "entity", "must be an array of tables [[entity]]");
+    for (size_t i = 0; a && i < a->size(); ++i) {
+      const std::string p = "entity[" + std::to_string(i) + "].";
+      const auto* t = a->get(i)->as_table();
+      if (!t) {
+        r.problem(a->get(i), p, "must be a table");
+        continue;
+      }
+      r.unknown_keys(*t, p, {"dis_type", "kind", "track"});
+      Entry e;
+      target(*t, p, e);
+      if (auto pat = read_type_pattern(r, *t, "dis_type", p + "dis_type", r.line(t))) {
+        e.type = *pat;
+        out.entries_.push_back(std::move(e));
+      }
+    }
+  }
+  if (!problems.empty()) throw world::InputError(std::move(problems));
+  std::stable_sort(out.entries_.begin(), out.entries_.end(),
+                   [](const Entry& a, const Entry& b) { return a.type.given > b.type.given; });
+  return out;
+}
+
+std::vector<world::Problem> EntityTypeTable::check_kinds(const world::KindTable& kinds) const {
+  std::vector<world::Problem> ps;
+  auto check = [&](const Entry& e) {
+    if (!e.kind.empty() && vehicle_kind_named(kinds, e.kind) < 0)
+      ps.push_back({file_, e.line, e.field, "no vehicle kind '" + e.kind + "' in " + kinds.file().string()});
+  };
+  check(default_);
+  for (const auto& e : entries_) check(e);
+  return ps;
+}
+
+EntityChoice EntityTypeTable::resolve(const net::EntityType& t, const world::KindTable& kinds) const {
+  for (int k = 0; k < kinds.size(); ++k)  // 1. one of our own vehicle kinds
+    if (kinds[k].mobile() && kinds[k].mobility != world::Mobility::Munition && same_type(kinds[k].dis, t)) return {k};
+  auto choose = [&](const Entry& e) -> EntityChoice {
+    if (!e.track.empty()) return {-1, e.track.c_str()};
+    return {vehicle_kind_named(kinds, e.kind)};
+  };
+  for (const auto& e : entries_)  // 2. the most specific entry whose kind this kinds file has
+    if (e.type.matches(t))
+      if (const EntityChoice c = choose(e); c.kind >= 0 || *c.track) return c;
+  if (const EntityChoice c = choose(default_); c.kind >= 0 || *c.track) return c;  // 3.
+  return {vehicle_kind_for(kinds, t)};  // a kinds file without the table's kinds
+}
+
+}  // namespace npsnet::node
