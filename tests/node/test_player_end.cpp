@@ -5,7 +5,7 @@
 //  - a `quit` action ends the run cleanly: exit 0, the summary printed, an event log of whole
 //    lines that ends at the quit, or, with snapshots, once the result frame of every imminent
 //    frame taken is written (the pair is never cut in half).
-// The window's own quit paths (Esc, closing the window) are in test_window.cpp.
+// The window's own quit paths (Esc, closing the window) are in tests/window/test_window_quit.cpp.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
