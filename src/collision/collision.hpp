@@ -125,6 +125,7 @@ class Detector {
   std::vector<float> fixed_x_, fixed_y_, fixed_r_;  // fixed objects' test circles (m)
   size_t fixed_indexed_ = static_cast<size_t>(-1);
   std::vector<uint32_t> rank_, fixed_rank_;
+  int64_t ranked_created_ = -1;
   std::vector<Shape> shapes_;           // per model index
   ShapeScratch scratch_;
 };

@@ -168,7 +168,10 @@ void Detector::rank_ids(const world::World& w) {
     out.resize(ids.size());
     for (uint32_t r = 0; r < by.size(); ++r) out[by[r]] = r;
   };
-  if (rank_.size() != w.ents.size()) rank(w.ents.id, rank_);  // entities are only ever appended
+  if (ranked_created_ != w.ents.created || rank_.size() != w.ents.size()) {  // ids changed: made or reclaimed
+    rank(w.ents.id, rank_);
+    ranked_created_ = w.ents.created;
+  }
   if (fixed_rank_.size() != w.fixed.size()) rank(w.fixed.id, fixed_rank_);
 }
 

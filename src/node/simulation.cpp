@@ -51,8 +51,14 @@ void Simulation::apply_now(const world::Changes& c) {
 }
 
 int Simulation::fire(int shooter, int munition_kind, const Vec3 point, int target_entity, const std::string target_name) {
-  const auto launch = dynamics::fire(w_, shooter, munition_kind, point, target_entity);
+  auto launch = dynamics::fire(w_, shooter, munition_kind, point, target_entity);
   if (!launch) return -1;
+  // Reclaim the slot of a round spent at least two ticks ago (no contact episode, PDU or
+  // snapshot of this tick or the last still names it).
+  if (!spent_.empty() && spent_.front().first + 2 <= w_.frame) {
+    launch->slot = spent_.front().second;
+    spent_.pop_front();
+  }
   now_.clear();
   now_.launches.push_back(*launch);
   apply_now(now_);
@@ -201,6 +207,9 @@ void Simulation::tick() {
   if (before_apply) before_apply(w_, changes_);
   world::apply(w_, changes_, applied_);
   log_changes();
+  for (const auto& im : impacts_) spent_.emplace_back(w_.frame, im.munition);
+  for (const auto& c : changes_.entities)
+    if (c.deactivate && w_.ents.local[c.entity] && w_.is_munition(c.entity)) spent_.emplace_back(w_.frame, c.entity);
   // 6. Autonomous vehicles near a detonation they did not cause have been fired upon.
   for (const auto& d : changes_.detonations) {
     const int shooter = d.shooter;

@@ -17,6 +17,7 @@
 // Threading: a Simulation and its World belong to one thread (the tick's); stages 3 and 4 may
 // fan out to workers that read the world (and write only their own entities in 3).
 #pragma once
+#include <deque>
 #include <functional>
 #include <vector>
 
@@ -103,6 +104,7 @@ class Simulation {
   std::vector<int> fired_;
   world::Changes changes_, injected_, now_;
   world::Applied now_applied_;
+  std::deque<std::pair<int64_t, int>> spent_;  // (frame, slot) of local rounds spent, oldest first
   std::vector<world::DetonationRecord> injected_detonations_;
   world::Applied applied_;
 };

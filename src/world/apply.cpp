@@ -26,9 +26,14 @@ int launch(World& w, const Launch& l) {
   assert(l.shooter >= 0 && l.shooter < static_cast<int>(ents.size()) && l.kind >= 0 && l.kind < w.kinds.size());
   ents.rounds[l.shooter] -= 1;
   char id[16];
-  std::snprintf(id, sizeof id, "m%d", static_cast<int>(ents.size()) % 100000000);
-  const int m = ents.add(id, l.kind, l.muzzle, static_cast<float>(dir_to_heading(l.vel.head<2>())),
-                         static_cast<float>(w.kinds[l.kind].radius_m));
+  std::snprintf(id, sizeof id, "m%d", static_cast<int>(ents.created % 100000000));
+  const float heading = static_cast<float>(dir_to_heading(l.vel.head<2>()));
+  const float radius = static_cast<float>(w.kinds[l.kind].radius_m);
+  const bool reclaim = l.slot >= 0 && l.slot < static_cast<int>(ents.size()) && !ents.active[l.slot] &&
+                       w.is_munition(static_cast<size_t>(l.slot));
+  int m = l.slot;
+  if (reclaim) ents.reset(m, id, l.kind, l.muzzle, heading, radius);
+  else m = ents.add(id, l.kind, l.muzzle, heading, radius);
   ents.vel[m] = l.vel;
   ents.target[m] = l.target;
   ents.aim[m] = l.aim;

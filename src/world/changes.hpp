@@ -34,9 +34,11 @@ struct EntityChange {
   float calm_until = -1;      // no new reaction before this scenario time (s)
 };
 
-// A round fired (dynamics::fire decides it): apply takes one of the shooter's rounds and adds the
-// munition entity, named "m<entity count>".
+// A round fired (dynamics::fire decides it): apply takes one of the shooter's rounds and makes the
+// munition entity, named "m<entities ever made>", in `slot` when that is a spent munition's
+// (reclaimed: the arrays do not grow with every round), else a new one.
 struct Launch {
+  int slot = -1;
   int shooter = -1;
   int kind = -1;              // munition kind
   int target = -1;            // entity a guided round tracks, or -1

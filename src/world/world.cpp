@@ -16,34 +16,41 @@ void FixedObjects::add(std::string id_, int kind_, const Vec3& p, float heading,
 }
 
 int Entities::add(std::string id_, int kind_, const Vec3& p, float heading, float radius) {
-  id.push_back(std::move(id_));
-  kind.push_back(static_cast<int16_t>(kind_));
-  state.push_back(0);
-  pos.push_back(p);
-  vel.push_back(Vec3::Zero());
-  heading_deg.push_back(heading);
-  pitch_deg.push_back(0);
-  roll_deg.push_back(0);
-  radius_m.push_back(radius);
-  cruise_mps.push_back(0);
-  max_mps.push_back(0);
-  active.push_back(1);
-  local.push_back(1);
-  snapshots.push_back(1);
-  autonomous.push_back(0);
-  target.push_back(-1);
-  aim.push_back(p);
-  owner.push_back(-1);
-  rounds.push_back(0);
-  fuel_l.push_back(0);
-  node.push_back(1);
-  route.emplace_back();
-  leg.push_back(0);
-  loop_route.push_back(0);
-  flee_until.push_back(-1);
-  calm_until.push_back(-1);
-  driven.push_back(0);
-  return static_cast<int>(id.size() - 1);
+  const size_t n = id.size() + 1;
+  id.resize(n), kind.resize(n), state.resize(n), pos.resize(n), vel.resize(n), heading_deg.resize(n);
+  pitch_deg.resize(n), roll_deg.resize(n), radius_m.resize(n), cruise_mps.resize(n), max_mps.resize(n);
+  active.resize(n), local.resize(n), snapshots.resize(n), autonomous.resize(n), target.resize(n), aim.resize(n);
+  owner.resize(n), rounds.resize(n), fuel_l.resize(n), node.resize(n), route.resize(n), leg.resize(n);
+  loop_route.resize(n), flee_until.resize(n), calm_until.resize(n), driven.resize(n);
+  const int e = static_cast<int>(n - 1);
+  reset(e, std::move(id_), kind_, p, heading, radius);
+  return e;
+}
+
+void Entities::reset(int e, std::string id_, int kind_, const Vec3& p, float heading, float radius) {
+  const size_t i = static_cast<size_t>(e);
+  id[i] = std::move(id_);
+  kind[i] = static_cast<int16_t>(kind_);
+  state[i] = 0;
+  pos[i] = p;
+  vel[i] = Vec3::Zero();
+  heading_deg[i] = heading;
+  pitch_deg[i] = roll_deg[i] = 0;
+  radius_m[i] = radius;
+  cruise_mps[i] = max_mps[i] = 0;
+  active[i] = local[i] = snapshots[i] = 1;
+  autonomous[i] = 0;
+  target[i] = owner[i] = -1;
+  aim[i] = p;
+  rounds[i] = 0;
+  fuel_l[i] = 0;
+  node[i] = 1;
+  route[i].clear();
+  leg[i] = 0;
+  loop_route[i] = 0;
+  flee_until[i] = calm_until[i] = -1;
+  driven[i] = 0;
+  ++created;
 }
 
 bool FixedObjects::valid() const {

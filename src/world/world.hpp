@@ -61,8 +61,11 @@ struct Entities {
   std::vector<float> flee_until;             // autonomous: fleeing until this time (s)
   std::vector<float> calm_until;             // autonomous: no new reaction before this time (s)
   std::vector<uint8_t> driven;               // 1 = a player drives it (dynamics/drive.hpp), not its route
+  int64_t created = 0;                       // entities ever made (add or reset): ids change when it does
   size_t size() const { return id.size(); }
   int add(std::string id_, int kind_, const Vec3& p, float heading, float radius);
+  // Makes slot e a new entity, every field as add() sets it (a spent munition's slot, reclaimed).
+  void reset(int e, std::string id_, int kind_, const Vec3& p, float heading, float radius);
   bool valid() const;  // invariant: every array has size() entries
 };
 
