@@ -34,6 +34,12 @@ void Detector::prepare_shapes(const world::World& w) {
   if (static_cast<int>(shapes_.size()) == w.models.size()) return;
   shapes_.clear();
   for (int i = 0; i < w.models.size(); ++i) shapes_.push_back(make_shape(w.models[i]));
+  // Standing trunks: the states a kind gives a trunk radius collide as that cylinder.
+  for (int k = 0; k < w.kinds.size(); ++k) {
+    const world::Kind& kd = w.kinds[k];
+    for (size_t s = 0; s < kd.trunk_radius_by_state.size() && s < kd.models.size(); ++s)
+      if (kd.trunk_radius_by_state[s] > 0) shapes_[kd.models[s]] = make_trunk(w.models[kd.models[s]], kd.trunk_radius_by_state[s]);
+  }
 }
 
 bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier tier, double t_in, double t_out,

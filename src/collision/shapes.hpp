@@ -29,6 +29,11 @@ struct Shape {
   std::vector<std::array<Vec3, 3>> tris;         // non-degenerate triangles
 };
 Shape make_shape(const world::Model& m);
+// A standing trunk (tree, pole: kinds.toml trunk_radius_m): a vertical cylinder of radius r (m) from
+// the model's foot to its top, as a prism of kTrunkSides sides around it (box: its square; hull
+// and mesh: the prism), in place of the model's crown and branches.
+inline constexpr int kTrunkSides = 8;
+Shape make_trunk(const world::Model& m, double r);
 
 struct ShapeScratch {  // reused buffers of the mesh test
   std::vector<std::array<Vec3, 3>> tb;

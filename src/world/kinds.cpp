@@ -103,7 +103,7 @@ KindTable KindTable::load_text(std::string_view text, const std::filesystem::pat
     const std::string p = name + ".";
     r.unknown_keys(*t, p, {"mobility", "mass_kg", "radius_m", "states", "models", "explosive", "max_speed_kmh",
                            "dis_type", "blast_radius_m", "crater_radius_m", "crater_depth_m", "rounds", "fuel_l", "resistance",
-                           "tiers", "sensor_range_m", "guided", "munition", "fuel_lph", "accel_mps2", "brake_mps2",
+                           "tiers", "trunk_radius_m", "sensor_range_m", "guided", "munition", "fuel_lph", "accel_mps2", "brake_mps2",
                            "turn_radius_m", "climb_mps"});
     Kind k;
     k.name = name;
@@ -186,6 +186,12 @@ KindTable KindTable::load_text(std::string_view text, const std::filesystem::pat
           r.problem(t->get("tiers"), p + "tiers", "must list sphere, capsule, box, hull or mesh (got '" + tn + "')");
         else
           k.top_tier = std::max(k.top_tier, *v);
+      }
+    }
+    if (auto tr = r.numbers(*t, "trunk_radius_m", p + "trunk_radius_m", k.states.size(), k.states.size(), false, tl)) {
+      for (double v : *tr) {
+        if (!(v >= 0 && v <= kMaxSizeM)) r.problem(t->get("trunk_radius_m"), p + "trunk_radius_m", "each must be 0 (the model) or a radius in m");
+        k.trunk_radius_by_state.push_back(static_cast<float>(v));
       }
     }
     read_handling(r, *t, p, tl, k);

@@ -57,6 +57,9 @@ struct Kind {
   // collision shape tiers (`tiers` in kinds.toml): the highest declared; Auto = not declared
   // (collision::top_tier decides)
   ShapeTier top_tier = ShapeTier::Auto;
+  // fixed objects that stand on a trunk (tree, pole): per state, the trunk's radius (m) the
+  // collision tiers use instead of the state's model (a vertical cylinder); 0 = the model
+  std::vector<float> trunk_radius_by_state;
 
   int state_index(const std::string& s) const;  // -1 if unknown
   bool mobile() const { return mobility != Mobility::Fixed; }

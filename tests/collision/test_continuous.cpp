@@ -229,9 +229,9 @@ TEST(Tiers, CheapestTierDecidesAndAForcedTierIsObeyed) {
     d.detect(w, c);
     EXPECT_EQ(c.size(), expect) << collision::tier_name(tier);
   }
-  // Auto: a tank and a tree stay spheres (the tree declares only its sphere).
+  // Auto: a tank and a rock stay spheres (the rock declares only its sphere).
   auto w = test::flat_world();
-  test::add_fixed(w, "t", "tree", 500, 504);
+  test::add_fixed(w, "r", "rock", 500, 504);
   test::add_vehicle(w, "a", "m1a1", 500, 500, 0, 0);
   test::index_fixed(w);
   collision::Detector d(continuous(0.1));
@@ -256,7 +256,9 @@ TEST(Tiers, KindsDeclareTheirTiersInKindsToml) {
   auto w = test::flat_world();
   EXPECT_EQ(w.kinds[w.kinds.find("m1a1")].top_tier, world::ShapeTier::Mesh);
   EXPECT_EQ(collision::top_tier(w.kinds[w.kinds.find("m1a1")]), collision::Tier::Mesh);
-  EXPECT_EQ(collision::top_tier(w.kinds[w.kinds.find("tree")]), collision::Tier::Sphere);
+  EXPECT_EQ(collision::top_tier(w.kinds[w.kinds.find("tree")]), collision::Tier::Hull);  // its trunk
+  EXPECT_EQ(collision::top_tier(w.kinds[w.kinds.find("building")]), collision::Tier::Box);
+  EXPECT_EQ(collision::top_tier(w.kinds[w.kinds.find("rock")]), collision::Tier::Sphere);
   EXPECT_EQ(collision::top_tier(w.kinds[w.kinds.find("he_round")]), collision::Tier::Sphere);
   const auto bad = test::write_file("kinds_bad_tiers.toml",
                                     "[thing]\nmobility = \"ground\"\nmass_kg = 1.0\nstates = [\"intact\"]\n"
