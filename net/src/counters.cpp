@@ -57,6 +57,8 @@ std::string Counters::summary() const {
   if (aoi_joins || aoi_join_failures)
     s += " | aoi groups=" + std::to_string(aoi_groups_held) + " joins=" + std::to_string(aoi_joins) +
          " leaves=" + std::to_string(aoi_leaves) + " join_failures=" + std::to_string(aoi_join_failures);
+  if (dropped_by_kernel || polls_capped)
+    s += " | overload dropped=" + std::to_string(dropped_by_kernel) + " capped_polls=" + std::to_string(polls_capped);
   return s;
 }
 

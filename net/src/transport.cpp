@@ -6,11 +6,14 @@
 
 #include <array>
 #include <asio.hpp>
+#include <cerrno>
 #include <charconv>
+#include <cstring>
 #include <unordered_map>
 #include <vector>
 
 #include <netinet/in.h>
+#include <sys/socket.h>
 #include <stdexcept>
 
 namespace net {
@@ -74,6 +77,8 @@ struct UdpTransport::Impl {
   TransportConfig config;
   std::unordered_map<std::uint32_t, std::size_t> joined;  // group -> socket index
   std::vector<std::size_t> joined_per_socket;
+  std::vector<std::uint32_t> kernel_drops;  // per socket: the last SO_RXQ_OVFL count seen
+  std::uint64_t kernel_drops_total = 0;
   std::size_t next_rx = 0;
   std::array<std::uint8_t, 65536> buffer{};
 
@@ -133,7 +138,14 @@ asio::ip::udp::socket& UdpTransport::Impl::open_socket() {
   }
   s.non_blocking(true, ec);
   if (ec) fail("cannot make the socket non-blocking for " + where, ec);
+  // The kernel's count of datagrams it dropped because this socket's receive buffer was full
+  // (a flood): given with every datagram read (recvmsg control data). Not fatal where missing.
+#ifdef SO_RXQ_OVFL
+  const int on = 1;
+  (void)::setsockopt(s.native_handle(), SOL_SOCKET, SO_RXQ_OVFL, &on, sizeof on);
+#endif
   joined_per_socket.push_back(0);
+  kernel_drops.push_back(0);
   return sockets.emplace_back(std::move(s));
 }
 
@@ -248,21 +260,41 @@ std::optional<std::span<const std::uint8_t>> UdpTransport::receive(UdpSource& so
   const std::size_t n_sockets = m.sockets.size();
   for (std::size_t k = 0; k < n_sockets; ++k) {
     const std::size_t i = (m.next_rx + k) % n_sockets;
-    asio::error_code ec;
-    asio::ip::udp::endpoint from;
-    const std::size_t n = m.sockets[i].receive_from(asio::buffer(m.buffer), from, 0, ec);
-    if (ec) {
-      if (ec != asio::error::would_block && ec != asio::error::try_again)
-        m.last_error = "receive failed: " + ec.message();
+    sockaddr_in from{};
+    iovec iov{m.buffer.data(), m.buffer.size()};
+    alignas(cmsghdr) std::array<char, CMSG_SPACE(sizeof(std::uint32_t))> control{};
+    msghdr msg{};
+    msg.msg_name = &from;
+    msg.msg_namelen = sizeof from;
+    msg.msg_iov = &iov;
+    msg.msg_iovlen = 1;
+    msg.msg_control = control.data();
+    msg.msg_controllen = control.size();
+    const ssize_t got = ::recvmsg(m.sockets[i].native_handle(), &msg, MSG_DONTWAIT);
+    if (got < 0) {
+      if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)
+        m.last_error = std::string("receive failed: ") + std::strerror(errno);
       continue;
     }
+    const auto n = static_cast<std::size_t>(got);
+#ifdef SO_RXQ_OVFL
+    for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c; c = CMSG_NXTHDR(&msg, c)) {
+      if (c->cmsg_level != SOL_SOCKET || c->cmsg_type != SO_RXQ_OVFL) continue;
+      std::uint32_t dropped = 0;
+      std::memcpy(&dropped, CMSG_DATA(c), sizeof dropped);
+      m.kernel_drops_total += static_cast<std::uint32_t>(dropped - m.kernel_drops[i]);  // wraps at 2^32
+      m.kernel_drops[i] = dropped;
+    }
+#endif
     m.next_rx = i;  // drain this socket first next time
-    source.address = from.address().is_v4() ? from.address().to_v4().to_uint() : 0;
-    source.port = from.port();
+    source.address = from.sin_family == AF_INET ? ntohl(from.sin_addr.s_addr) : 0;
+    source.port = ntohs(from.sin_port);
     return std::span<const std::uint8_t>(m.buffer.data(), n);
   }
   return std::nullopt;
 }
+
+std::uint64_t UdpTransport::dropped_by_kernel() const noexcept { return impl_->kernel_drops_total; }
 
 int UdpTransport::native_handle() const noexcept { return impl_->sockets.front().native_handle(); }
 

@@ -36,6 +36,10 @@ struct Counters {
   std::uint64_t aoi_groups_held = 0;
   std::uint64_t aoi_join_failures = 0;
   std::uint64_t bytes_received = 0;              // datagram payload octets
+  // Overload (a flood): datagrams the kernel dropped with the receive buffer full, and polls
+  // that stopped at their bound with more waiting (the rest read next tick, or dropped).
+  std::uint64_t dropped_by_kernel = 0;
+  std::uint64_t polls_capped = 0;
 
   std::uint64_t decoded_total() const noexcept;
   std::uint64_t rejected_total() const noexcept;
@@ -49,7 +53,8 @@ struct Counters {
   // "datagrams 3 pdus 5 | decoded entity_state=2 fire=1 | skipped unknown_type=1 version=0 |
   //  rejected length_exceeds_data=1 | ignored own_echo=0 other_exercise=0 | sent entity_state=4"
   // (" own_id_clash=N" after own_echo when any), followed, once a group was joined through the area of interest, by
-  // " | aoi groups=12 joins=15 leaves=3 join_failures=0".
+  // " | aoi groups=12 joins=15 leaves=3 join_failures=0", and under a flood by
+  // " | overload dropped=120000 capped_polls=4".
   std::string summary() const;
 };
 

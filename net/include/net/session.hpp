@@ -81,11 +81,15 @@ class Session {
     std::size_t delivered = 0;
     if (!transport_) return 0;
     transport_->poll([&](std::span<const std::uint8_t> d) { delivered += parse(d, visitor); });
+    note_overload();
     return delivered;
   }
   template <class F>
   std::size_t poll_datagrams(F&& on_datagram) {
-    return transport_ ? transport_->poll(on_datagram) : 0;
+    if (!transport_) return 0;
+    const std::size_t n = transport_->poll(on_datagram);
+    note_overload();
+    return n;
   }
   template <class Visitor>
   std::size_t parse(std::span<const std::uint8_t> datagram, Visitor&& visitor) {
@@ -116,6 +120,11 @@ class Session {
   static constexpr std::size_t kSentMemory = 1024;  // > a tick's sends (128 capped + fires)
   std::array<std::uint64_t, kSentMemory> sent_hash_{};
   std::size_t sent_next_ = 0;
+
+  void note_overload() noexcept {  // the transport's flood counters into counters()
+    counters_.dropped_by_kernel = transport_->dropped_by_kernel();
+    counters_.polls_capped = transport_->polls_capped();
+  }
 
   SessionConfig config_;
   std::optional<UdpTransport> transport_;  // empty when offline

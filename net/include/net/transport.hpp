@@ -93,6 +93,9 @@ class UdpTransport {
   std::optional<std::span<const std::uint8_t>> receive() noexcept;
   // The same, and the sender's address and port in `from`.
   std::optional<std::span<const std::uint8_t>> receive(UdpSource& from) noexcept;
+  // Datagrams the kernel dropped because a receive buffer was full (a peer flooding us, or a
+  // tick too slow to drain it), as of the last datagram read: counted, never fatal.
+  std::uint64_t dropped_by_kernel() const noexcept;
   // The first socket's file descriptor (to wait on several transports with poll(2); the only
   // socket unless many-groups mode opened more); do not close it.
   int native_handle() const noexcept;
@@ -104,12 +107,16 @@ class UdpTransport {
     std::size_t n = 0;
     while (n < max_per_poll_) {
       auto d = receive();
-      if (!d) break;
+      if (!d) return n;
       ++n;
       on_datagram(*d);
     }
+    ++polls_capped_;  // more may be waiting: left for the next poll (bounded work per tick)
     return n;
   }
+
+  // poll() calls that stopped at max_datagrams_per_poll with datagrams possibly still waiting.
+  std::uint64_t polls_capped() const noexcept { return polls_capped_; }
 
   const UdpUrl& destination() const noexcept;
   const std::string& iface() const noexcept;
@@ -120,6 +127,7 @@ class UdpTransport {
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::size_t max_per_poll_ = 4096;
+  std::uint64_t polls_capped_ = 0;
 };
 
 }  // namespace net
