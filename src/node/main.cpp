@@ -30,6 +30,8 @@ Exit codes: 0 ok, 2 bad input (nothing written), 1 failure while running.)");
   run->add_option("--frames", o.frames, "run length in ticks")->check(CLI::Range(1L, 1000000000L))->excludes(sec);
   run->add_option("--dt", o.dt, "fixed step in seconds, 0.01 to 1 (default 0.1)")->check(finite_in(0.01, 1.0, "s"));
   run->add_option("--events", o.events, "event log, JSON Lines (default <snapshots>/events.jsonl)");
+  run->add_option("--state-out", o.state_out, "at the end, write the world (vehicles, changed objects, craters) as JSON");
+  run->add_option("--state-at", o.state_at, "write --state-out at this scenario time (s) instead of at the end")->check(finite_in(0, 1e7, "s"));
   run->add_option("--snapshots", o.snapshots, "folder for snapshot PNGs (default screenshots/)");
   run->add_flag("--window", o.window, "show a GLFW window (needs a display)");
   run->add_flag("--realtime", o.realtime, "pace ticks to the wall clock");

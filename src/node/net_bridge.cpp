@@ -120,6 +120,10 @@ std::string NetBridge::summary() const {
                 "(fixed 10 Hz: 600); %zu remote entities",
                 ground_vehicles_, (unsigned long long)ground_es_sent_, s, per, remotes_.size());
   std::string r = "  net: " + session_->counters().summary() + b;
+  if (detonations_.kept() || detonations_.repeats_ignored())
+    r += "\n  net: detonations kept " + std::to_string(detonations_.kept()) + " (repeated " +
+         std::to_string(detonations_.repeats_sent()) + " times, " + std::to_string(detonations_.dropped_kept()) +
+         " past the cap); repeats received and ignored " + std::to_string(detonations_.repeats_ignored());
   if (fixed_unnumbered_)
     r += "\n  net: " + std::to_string(fixed_unnumbered_) + " fixed-object changes not published (index past 65534)";
   r += remotes_.listing(clock_s());
@@ -209,7 +213,15 @@ void NetBridge::on_cultural(const net::EntityStatePdu& p) {
   const world::Kind& k = w.kinds[w.fixed.kind[o]];
   if (!same_type(k.dis, p.entity_type)) return;  // not the same object: other scenario or objects file
   const int to = state_from_appearance(k, p.appearance);  // damage bits 3-4 (dis_mapping.hpp)
-  if (to > fixed_net_state_[o]) fixed_net_state_[o] = static_cast<int16_t>(to);
+  if (to > fixed_net_state_[o]) {
+    fixed_net_state_[o] = static_cast<int16_t>(to);
+    // Every node that knows a changed object keeps publishing it (states only go forward, so
+    // the highest heard wins): it outlives its first publisher, and a late joiner learns it.
+    if (std::find(fixed_published_.begin(), fixed_published_.end(), o) == fixed_published_.end()) {
+      fixed_published_.push_back(o);
+      fixed_last_sent_.push_back(now_s_);
+    }
+  }
   if (to > w.fixed.state[o]) {
     inject_.clear();
     inject_.fixed.push_back({o, to});
@@ -443,10 +455,14 @@ void NetBridge::publish_detonations(const TickReport& r) {
     } else {
       evn = next_event();
     }
-    session_->send_to(group_at(d.point),
-                      detonation_pdu(sim_.world(), d, ents.owner[m] >= 0 ? own_id(ents.owner[m]) : net::EntityId{},
-                                     d.target >= 0 ? net_id(d.target) : net::EntityId{}, own_id(m), evn));
+    const auto pdu = detonation_pdu(sim_.world(), d, ents.owner[m] >= 0 ? own_id(ents.owner[m]) : net::EntityId{},
+                                    d.target >= 0 ? net_id(d.target) : net::EntityId{}, own_id(m), evn);
+    const std::uint32_t group = group_at(d.point);
+    session_->send_to(group, pdu);
+    detonations_.sent(pdu, group, now_s_);
   }
+  detonations_.resend_due(now_s_, remotes_.thresholds().heartbeat_s,
+                          [&](const net::DetonationPdu& pdu, std::uint32_t group) { session_->send_to(group, pdu); });
 }
 
 void NetBridge::after_tick(const TickReport& r) {

@@ -78,6 +78,7 @@
 #include "node/area_of_interest.hpp"
 #include "node/bridge_options.hpp"
 #include "node/event_log.hpp"
+#include "node/detonation_ledger.hpp"
 #include "node/ownership.hpp"
 #include "node/remote_entities.hpp"
 #include "node/simulation.hpp"
@@ -208,6 +209,7 @@ class NetBridge {
   std::vector<double> fixed_last_sent_;  // per published object
   std::uint64_t fixed_unnumbered_ = 0;   // changed objects past the last cultural entity number
   std::unordered_map<int, std::uint16_t> fire_event_;  // munition index -> event number
+  DetonationLedger detonations_;  // ours repeated every heartbeat; received ones applied once
   std::uint16_t event_number_ = 0;
   world::Changes inject_;  // reused for injected changes
   std::function<void(const TickReport&)> chained_on_tick_;

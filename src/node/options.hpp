@@ -13,6 +13,8 @@ struct RunOptions {
   std::optional<long> frames;
   double dt = 0.1;                             // s (the thesis's 10 Hz)
   std::filesystem::path events;                // default: <snapshots>/events.jsonl
+  std::filesystem::path state_out;             // --state-out: the world at the end (node/state_dump.hpp)
+  std::optional<double> state_at;              // --state-at: ... or at this scenario time (s)
   std::filesystem::path snapshots = "screenshots";
   bool window = false, realtime = false;
   std::string net = "off";

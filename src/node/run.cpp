@@ -11,6 +11,7 @@
 #ifdef NPSNET_HAVE_RENDER
 #include "node/player_window.hpp"
 #include "node/snapshots.hpp"
+#include "node/state_dump.hpp"
 #endif
 #include "node/simulation.hpp"
 // --- network ---
@@ -256,6 +257,7 @@ int run_command(const RunOptions& opt) {
   const auto go_on = [&](long i) {
     return ended_by ? more() && i < end_by : i < ticks || (more() && i < ticks + extra);
   };
+  bool state_written = o.state_out.empty();  // --state-out: written once, at --state-at or the end
   try {
     for (long i = 0; go_on(i); ++i, ++done) {
 #ifdef NPSNET_HAVE_NET
@@ -275,6 +277,10 @@ int run_command(const RunOptions& opt) {
 #else
       sim.tick();
 #endif
+      if (!state_written && o.state_at && sim.world().t >= *o.state_at - 1e-9) {
+        write_state(o.state_out, sim.world(), sim.craters());
+        state_written = true;
+      }
       if (player && player->quit()) end_now("quit", i);  // Esc, or a quit action
       if (paced && !ended_by) std::this_thread::sleep_until(deadline);
       if (!o.quiet && i + 1 >= next_progress && ticks >= 10) {
@@ -308,6 +314,7 @@ int run_command(const RunOptions& opt) {
   // --- network end ---
   try {
     log.flush();
+    if (!state_written) write_state(o.state_out, sim.world(), sim.craters());
   } catch (const OutputError& e) {
     std::fprintf(stderr, "npsnet: %s\n", e.what());
     return 1;

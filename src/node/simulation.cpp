@@ -136,6 +136,7 @@ void Simulation::log_changes() {
     log_.write(ev);
   }
   for (const auto& c : changes_.craters) {
+    craters_.push_back(c);
     auto ev = base("crater");
     ev["point"] = vec(c.point);
     ev["radius_m"] = c.radius_m;

@@ -48,6 +48,8 @@ class Simulation {
   // time. Scheduled fires before t that have not happened go at the next tick.
   void set_time(double t);
   const collision::DetectStats& stats() const { return detector_.stats(); }
+  // Every crater made so far (local and remote rounds), in order (--state-out).
+  const std::vector<world::Crater>& craters() const { return craters_; }
   std::function<void(const TickReport&)> on_tick;  // renderer, snapshots, network
   // Runs after the outcomes are decided, before they are applied (imminent snapshots).
   std::function<void(const world::World&, const world::Changes&)> before_apply;
@@ -85,6 +87,7 @@ class Simulation {
   void log_changes();
 
   world::World w_;
+  std::vector<world::Crater> craters_;
   EventLog& log_;
   double dt_;
   struct Scheduled {

@@ -39,6 +39,7 @@ void NetBridge::on_fire(const net::FirePdu& p) {
 }
 
 void NetBridge::on_detonation(const net::DetonationPdu& p) {
+  if (!detonations_.first_time(p)) return;  // a repeat (heartbeat repair) or a duplicated datagram
   const world::World& w = sim_.world();
   const Eigen::Vector3d loc(p.location.x, p.location.y, p.location.z);
   if (!loc.allFinite()) return;

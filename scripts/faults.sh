@@ -1,0 +1,147 @@
+#!/usr/bin/env bash
+# Four nodes on a faulty LAN in network namespaces (issue 11; README "Faults"). Needs root,
+# iproute2, python3 with /dev/net/tun, and a built build/npsnet.
+#
+#   hub namespace: bridge br0 ── p1 ═ linkshaper ═ eth0 (node 1 namespace, 10.215.0.11)
+#                             ├─ p2 ═ linkshaper ═ eth0 (node 2, .12)   ... nodes 3 and 4
+#
+# Every frame a node sends is impaired in user space (scripts/linkshaper.py, as this kernel has
+# no sch_netem): loss LOSS %, duplicated 5 %, reordered 25 %, delayed 20 ms +- 10 ms. On the
+# scenario tests/multinode/data/faults.toml, from a common start (wall clock):
+#   8 s - 18 s  node 2 cut off (a 10 s partition, then it heals)
+#   12 s        node 3 killed with SIGKILL; 16 s: started again (same site, application, scenario)
+#   30 s        node 4 starts (a late joiner)
+#   36 s        the faults stop (every link clean)
+#   41 s        every node writes its world (--state-out, --state-at: one heartbeat after the faults)
+#   42 s        every node ends
+# Then every node must hold the same world: the same vehicles with the same damage states, the
+# same changed objects, the same craters (tools: python3 compares the state files). With
+# --control the same exercise runs with no faults at all (nodes 1-4 from the start, no kill,
+# no partition, clean links), the reference.
+#
+# Usage: scripts/faults.sh [--control] [--out DIR] [--loss PERCENT]
+# Exit: 0 when all four worlds agree, 1 when not (the differences are printed), 2 bad arguments,
+# 77 when this machine cannot run it. Everything it creates is named with a per-run prefix and
+# removed by name on exit.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$(pwd)
+OUT=""
+CONTROL=0
+LOSS=20
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --control) CONTROL=1 ;;
+    --out) OUT="$2"; shift ;;
+    --loss) LOSS="$2"; shift ;;
+    -h|--help) sed -n '2,24p' "$0"; exit 0 ;;
+    *) echo "faults: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+  shift
+done
+skip() { echo "faults: SKIP: $*" >&2; exit 77; }
+[ "$(id -u)" -eq 0 ] || skip "needs root (network namespaces)"
+command -v ip >/dev/null || skip "iproute2 'ip' is not installed"
+command -v python3 >/dev/null && [ -c /dev/net/tun ] || skip "needs python3 and /dev/net/tun"
+NPSNET="$ROOT/build/npsnet"
+[ -x "$NPSNET" ] || skip "build/npsnet is not built (scripts/build.sh)"
+[ -n "$OUT" ] || OUT=$(mktemp -d /tmp/npsnet-faults.XXXXXX)
+mkdir -p "$OUT"
+
+P="nft$(( $$ % 100000 ))"
+HUB="${P}h"
+PORT=$(( 20000 + $$ % 40000 ))
+SCENARIO="$ROOT/tests/multinode/data/faults.toml"
+NSLIST=()
+SHAPERS=()
+PIDS=()
+cleanup() {
+  set +e
+  for pid in "${PIDS[@]}"; do kill -KILL "$pid" 2>/dev/null; wait "$pid" 2>/dev/null; done
+  for pid in "${SHAPERS[@]}"; do kill -TERM "$pid" 2>/dev/null; wait "$pid" 2>/dev/null; done
+  ip -n "$HUB" link del br0 2>/dev/null
+  for ns in "${NSLIST[@]}"; do ip netns del "$ns" 2>/dev/null; done
+}
+trap cleanup EXIT
+trap 'exit 1' INT TERM
+newns() { ip netns add "$1"; NSLIST+=("$1"); ip -n "$1" link set lo up; }
+
+newns "$HUB"
+ip -n "$HUB" link add br0 type bridge mcast_snooping 0
+ip -n "$HUB" link set br0 up
+SHAPE=(20 "$LOSS" --jitter-ms 10 --dup 5 --reorder 25 --one-way)
+[ "$CONTROL" = 1 ] && SHAPE=(0 0 --one-way)
+for k in 1 2 3 4; do
+  N="${P}n$k"
+  newns "$N"
+  rm -f "$OUT/link$k.log"
+  ip netns exec "$HUB" python3 "$ROOT/scripts/linkshaper.py" "p$k" eth0 "$N" "${SHAPE[0]}" "${SHAPE[1]}" "$k" \
+    "${SHAPE[@]:2}" > "$OUT/link$k.log" 2>&1 &
+  SHAPERS+=($!)
+  for _ in $(seq 1 50); do grep -qs ready "$OUT/link$k.log" && break; sleep 0.1; done
+  grep -q ready "$OUT/link$k.log" || { cat "$OUT/link$k.log" >&2; exit 1; }
+  ip -n "$HUB" link set "p$k" master br0
+  ip -n "$HUB" link set "p$k" up
+  ip -n "$N" addr add "10.215.0.$((10 + k))/24" dev eth0
+  ip -n "$N" link set eth0 up
+done
+
+T0=$(( $(date +%s) + 2 ))
+END=$(( T0 + 42 ))
+node() {  # node K, run tag, start (UNIX s): runs until END
+  local k=$1 tag=$2 start=$3
+  ip netns exec "${P}n$k" env NPSNET_DIS_TIMEOUT_S="${NPSNET_DIS_TIMEOUT_S:-12}" "$NPSNET" run --scenario "$SCENARIO" \
+    --no-render --quiet --net "udp://239.1.2.3:$PORT" --iface "10.215.0.$((10 + k))" --node "$k" --site 1 --app "$k" \
+    --start-at "$start" --seconds "$(( END - start ))" --events "$OUT/events_$tag.jsonl" --snapshots "$OUT/snap_$tag" \
+    --state-out "$OUT/state_$k.json" --state-at "$(( END - 1 - start ))" > "$OUT/out_$tag.txt" 2>&1 &
+  PIDS+=($!)
+}
+at() { while [ "$(date +%s)" -lt "$(( T0 + $1 ))" ]; do sleep 0.05; done; }  # until T0 + S
+sig_link() { kill "-$2" "${SHAPERS[$(( $1 - 1 ))]}"; }
+
+echo "faults: $([ "$CONTROL" = 1 ] && echo 'control run (no faults)' || echo "loss ${LOSS} %, dup 5 %, reorder 25 %, delay 20+-10 ms on every link"); out $OUT" >&2
+node 1 n1 "$T0"; node 2 n2 "$T0"; node 3 n3 "$T0"
+[ "$CONTROL" = 1 ] && node 4 n4 "$T0"
+if [ "$CONTROL" = 0 ]; then
+  at 8;  echo "faults: t=8 node 2 cut off" >&2; sig_link 2 USR1
+  at 12; echo "faults: t=12 node 3 killed (SIGKILL)" >&2; kill -KILL "${PIDS[2]}"; wait "${PIDS[2]}" 2>/dev/null || true
+  at 16; echo "faults: t=16 node 3 started again" >&2; node 3 n3b "$(( T0 + 16 ))"
+  at 18; echo "faults: t=18 node 2 back (partition healed)" >&2; sig_link 2 USR2
+  at 30; echo "faults: t=30 node 4 joins late" >&2; node 4 n4 "$(( T0 + 30 ))"
+  at 36; echo "faults: t=36 faults stop: every link clean" >&2; for k in 1 2 3 4; do sig_link "$k" HUP; done
+fi
+rc=0
+for pid in "${PIDS[@]}"; do
+  [ "$pid" = "${PIDS[2]}" ] && [ "$CONTROL" = 0 ] && continue  # the killed one
+  while kill -0 "$pid" 2>/dev/null && [ "$(date +%s)" -lt $(( END + 30 )) ]; do sleep 0.2; done
+  kill -0 "$pid" 2>/dev/null && { echo "faults: a node still runs 30 s after the end: killed" >&2; kill -KILL "$pid"; rc=1; }
+  wait "$pid" || { echo "faults: a node failed (see $OUT/out_*.txt)" >&2; rc=1; }
+done
+PIDS=()
+for pid in "${SHAPERS[@]}"; do kill -TERM "$pid" 2>/dev/null; wait "$pid" 2>/dev/null || true; done
+SHAPERS=()
+cat "$OUT"/link?.log | grep linkshaper >&2 || true
+python3 - "$OUT" <<'PY' || rc=1
+import json, sys
+out = sys.argv[1]
+worlds = {}
+for k in (1, 2, 3, 4):
+    with open("%s/state_%d.json" % (out, k)) as f:
+        s = json.load(f)
+    worlds[k] = {"vehicles": sorted((e["id"], e["state"]) for e in s["entities"]),
+                 "fixed": sorted((o["id"], o["state"]) for o in s["fixed"]),
+                 "craters": [tuple(c) for c in s["craters"]]}
+ref = worlds[1]
+print("faults: node 1 world: %d vehicles %s, changed objects %s, craters %s"
+      % (len(ref["vehicles"]), ref["vehicles"], ref["fixed"], ref["craters"]), file=sys.stderr)
+bad = 0
+for k in (2, 3, 4):
+    for what in ("vehicles", "fixed", "craters"):
+        if worlds[k][what] != ref[what]:
+            bad += 1
+            print("faults: node %d disagrees on %s: %s (node 1: %s)" % (k, what, worlds[k][what], ref[what]), file=sys.stderr)
+if bad:
+    sys.exit(1)
+print("faults: OK: all four nodes hold the same world", file=sys.stderr)
+PY
+exit "$rc"
