@@ -126,12 +126,21 @@ void TsharkDecodesTheRecordingWithEveryPduTheNodesSent() {
   const std::string rec = lan::read_text(dir / "out_rec.txt");
   EXPECT_NE(rec.find(std::to_string(nodes_sent) + " PDUs"), std::string::npos) << rec;
   EXPECT_NE(rec.find("fire=1"), std::string::npos) << rec;
-  EXPECT_NE(rec.find("detonation=1"), std::string::npos) << rec;
+  // One round, its Detonation sent again every heartbeat (5 s) by its firing node (the repair of
+  // a lost datagram): once or twice in this 8 s run.
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(rec, m, std::regex(R"(detonation=(\d+))"))) << rec;
+  EXPECT_GE(std::stoi(m[1]), 1);
+  EXPECT_LE(std::stoi(m[1]), 2);
   const auto chk = sh(npsnet() + " check '" + f + "' 2>&1");
   EXPECT_EQ(chk.rc, 0) << chk.out;
-  EXPECT_NE(chk.out.find(std::to_string(nodes_sent) + " DIS PDUs, 7 entities"), std::string::npos) << chk.out;
+  // 7 to 9 entities: the six vehicles and tree2 as a cultural feature once run down, published by
+  // the node that ran it down and, once heard, by each other node too (so it outlives its first
+  // publisher): up to three publishers in this run.
+  ASSERT_TRUE(std::regex_search(chk.out, m, std::regex(std::to_string(nodes_sent) + R"( DIS PDUs, (\d+) entities)"))) << chk.out;
+  EXPECT_GE(std::stoi(m[1]), 7);
+  EXPECT_LE(std::stoi(m[1]), 9);
   EXPECT_NE(chk.out.find("malformed PDUs: 0"), std::string::npos) << chk.out;
-  // 7 entities: the six vehicles and tree2, published as a cultural feature once run down.
 }
 
 void ReplayIntoAThirdNodeShowsWhatTheLiveThirdNodeSaw() {
