@@ -11,9 +11,9 @@
 #ifdef NPSNET_HAVE_RENDER
 #include "node/player_window.hpp"
 #include "node/snapshots.hpp"
-#include "node/state_dump.hpp"
 #endif
 #include "node/simulation.hpp"
+#include "node/state_dump.hpp"
 // --- network ---
 #ifdef NPSNET_HAVE_NET
 #include "node/net_bridge.hpp"
