@@ -37,7 +37,7 @@ void fill_entity_state(const world::World& w, int e, const net::EntityId& id, co
                        net::DrAlgorithm algorithm, std::uint32_t appearance, std::uint8_t exercise, double state_t_s,
                        net::EntityStatePdu& es) {
   es.entity_id = id;
-  es.force_id = 1;
+  es.force_id = w.ents.force[e];
   es.entity_type = to_net(w.kinds[w.ents.kind[e]].dis);
   es.alternative_entity_type = es.entity_type;
   es.marking = marking_of(w.ents.id[e]);

@@ -156,6 +156,7 @@ void RemoteEntities::joined(std::size_t ri) {
   ents.local[e] = 0;
   ents.active[e] = 1;
   ents.autonomous[e] = 0;
+  ents.force[e] = r.force_id;  // as its owner says
   if (kind < 0) kind = ents.kind[e];
   const bool known_type = same_type(w.kinds[kind].dis, r.type);
   auto ev = event("entity_joined");
@@ -197,7 +198,7 @@ std::string RemoteEntities::listing(double now_s, std::size_t max_lines) const {
                   now_s - r.last_update_s);
     out += "\n  remote " + id_text(r.id) + " " + nlohmann::json(net::marking_text(r.marking)).dump() + " type " +
            type_text(r.type) + " (" + kind + ")" + b + state + " (appearance damage " +
-           std::to_string(damage_bits(r.appearance)) + ")";
+           std::to_string(damage_bits(r.appearance)) + ") force " + std::to_string(r.force_id);
   }
   if (n > max_lines) out += "\n  remote ... " + std::to_string(n - max_lines) + " more";
   return out;

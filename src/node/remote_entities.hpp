@@ -54,7 +54,7 @@ class RemoteEntities {
   void set_poses(double now_s);
   // One line per remote entity heard and not gone (at most max_lines, then how many more):
   // "  remote 1:50:1 \"r1\" type 1:1:225:1:1:3:0 (m1a1) owner site 1 app 50 last update 0.4 s ago
-  // damage intact (appearance damage 0)". The marking is JSON-quoted (decoded, made safe).
+  // damage intact (appearance damage 0) force 1". The marking is JSON-quoted (decoded, made safe).
   std::string listing(double now_s, std::size_t max_lines = 100) const;
 
  private:

@@ -109,7 +109,7 @@ Scenario load_scenario_text(std::string_view text, const std::filesystem::path& 
       }
       const int tl = r.line(t);
       r.unknown_keys(*t, p, {"id", "kind", "position_m", "heading_deg", "speed_kmh", "max_speed_kmh", "waypoints_m",
-                             "node", "autonomous", "snapshots", "loop"});
+                             "node", "autonomous", "snapshots", "loop", "force"});
       VehicleSpec v;
       v.line = tl;
       if (auto id = r.string(*t, "id", p + "id", true, tl)) {
@@ -153,6 +153,12 @@ Scenario load_scenario_text(std::string_view text, const std::filesystem::path& 
       v.autonomous = r.boolean(*t, "autonomous", p + "autonomous").value_or(false);
       v.snapshots = r.boolean(*t, "snapshots", p + "snapshots").value_or(true);
       v.loop = r.boolean(*t, "loop", p + "loop").value_or(false);
+      if (auto f = r.string(*t, "force", p + "force", false, tl)) {  // IEEE 1278.1 Force ID
+        if (*f == "friendly") v.force = 1;
+        else if (*f == "opposing") v.force = 2;
+        else if (*f == "neutral") v.force = 3;
+        else r.problem(t->get("force"), p + "force", "must be friendly, opposing or neutral (got '" + *f + "')");
+      }
       s.vehicles.push_back(std::move(v));
     }
   }
@@ -347,6 +353,7 @@ World build_world(const Scenario& s) {
     w.ents.rounds[e] = kind.rounds;
     w.ents.fuel_l[e] = static_cast<float>(kind.fuel_l);
     w.ents.node[e] = v.node;
+    w.ents.force[e] = v.force;
     w.ents.route[e] = v.waypoints;
     w.ents.loop_route[e] = v.loop;
   };

@@ -27,6 +27,7 @@ struct VehicleSpec {
   int node = 1;
   bool autonomous = false, snapshots = true;
   bool loop = false;  // drives its waypoints over and over (background traffic)
+  uint8_t force = 1;  // `force`: DIS Force ID, 1 "friendly" (default), 2 "opposing", 3 "neutral"
   int line = 0;
 };
 

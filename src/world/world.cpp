@@ -20,7 +20,7 @@ int Entities::add(std::string id_, int kind_, const Vec3& p, float heading, floa
   id.resize(n), kind.resize(n), state.resize(n), pos.resize(n), vel.resize(n), heading_deg.resize(n);
   pitch_deg.resize(n), roll_deg.resize(n), radius_m.resize(n), cruise_mps.resize(n), max_mps.resize(n);
   active.resize(n), local.resize(n), snapshots.resize(n), autonomous.resize(n), target.resize(n), aim.resize(n);
-  owner.resize(n), rounds.resize(n), fuel_l.resize(n), node.resize(n), route.resize(n), leg.resize(n);
+  owner.resize(n), rounds.resize(n), fuel_l.resize(n), node.resize(n), force.resize(n), route.resize(n), leg.resize(n);
   loop_route.resize(n), flee_until.resize(n), calm_until.resize(n), driven.resize(n);
   const int e = static_cast<int>(n - 1);
   reset(e, std::move(id_), kind_, p, heading, radius);
@@ -45,6 +45,7 @@ void Entities::reset(int e, std::string id_, int kind_, const Vec3& p, float hea
   rounds[i] = 0;
   fuel_l[i] = 0;
   node[i] = 1;
+  force[i] = 1;
   route[i].clear();
   leg[i] = 0;
   loop_route[i] = 0;
@@ -64,7 +65,7 @@ bool Entities::valid() const {
   for (size_t s : {kind.size(), state.size(), pos.size(), vel.size(), heading_deg.size(), pitch_deg.size(),
                    roll_deg.size(), radius_m.size(), cruise_mps.size(), max_mps.size(), active.size(), local.size(),
                    snapshots.size(), autonomous.size(), target.size(), aim.size(), owner.size(), rounds.size(),
-                   fuel_l.size(), node.size(), route.size(), leg.size(), loop_route.size(), flee_until.size(),
+                   fuel_l.size(), node.size(), force.size(), route.size(), leg.size(), loop_route.size(), flee_until.size(),
                    calm_until.size()})
     if (s != n) return false;
   return true;

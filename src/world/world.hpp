@@ -55,6 +55,7 @@ struct Entities {
   std::vector<int32_t> rounds;
   std::vector<float> fuel_l;
   std::vector<int32_t> node;                 // the node that drives it (--node)
+  std::vector<uint8_t> force;                // DIS Force ID: 1 friendly, 2 opposing, 3 neutral (0 other)
   std::vector<std::vector<Vec2>> route;      // waypoints (set once at load; not touched per tick)
   std::vector<int32_t> leg;                  // index of the waypoint being steered to
   std::vector<uint8_t> loop_route;           // 1 = start over after the last waypoint

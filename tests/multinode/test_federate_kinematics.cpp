@@ -58,6 +58,7 @@ TEST(FederateKinematics, SentStatesAreStampedWithTheirTimeAndFilteredAcceleratio
   EXPECT_GE(moving, 2) << "tank2 sends while it drives";
   EXPECT_LT(worst_x, 0.05) << "a state stamped with another time is off by 1 m at 10 m/s (one 0.1 s tick)";
   EXPECT_LT(worst_a, 20.0) << "stopping in one tick is not sent as 100 m/s^2";
+  for (const auto& p : tank2) EXPECT_EQ(p.force_id, 2) << "force = \"opposing\" in the scenario";
   std::filesystem::remove_all(node.dir);
 }
 

@@ -69,6 +69,17 @@ TEST(CheckMessages, UnknownKind) {
   EXPECT_EQ(p[0].rfind(f + ":5: vehicle[0].kind: unknown kind 'm1a2' (known: ah64, bmp, building,", 0), 0u) << p[0];
 }
 
+// A vehicle's DIS Force ID (issue 10, defect 6): friendly (default), opposing or neutral.
+TEST(CheckMessages, ForceIsFriendlyOpposingOrNeutral) {
+  const auto f = scenario(vehicle("t1", "m1a1", "150.0, 150.0") + "force = \"blue\"\n" +
+                          vehicle("t2", "m1a1", "160.0, 150.0") + "force = \"opposing\"\n");
+  const auto p = problems_of(f);
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(p[0], f + ":9: vehicle[0].force: must be friendly, opposing or neutral (got 'blue')");
+  const auto g = scenario(vehicle("t2", "m1a1", "160.0, 150.0") + "force = \"opposing\"\n", "force2.toml");
+  EXPECT_EQ(world::build_world(world::load_scenario(g)).ents.force[0], 2);
+}
+
 TEST(CheckMessages, MissingTerrainFile) {
   const auto f = test::write_file("missing.toml", "[world]\nterrain = \"nowhere.tif\"\n").string();
   const auto p = problems_of(f);
