@@ -46,5 +46,7 @@ std::uint32_t damage_appearance(const world::Kind& k, int state);
 int state_from_appearance(const world::Kind& k, std::uint32_t appearance);
 // The damage bits (0-3) of an appearance.
 inline unsigned damage_bits(std::uint32_t appearance) { return (appearance & dis::kDamageMask) >> dis::kDamageShift; }
+// The names of the damage bits' values (SISO-REF-010 appearance damage).
+inline constexpr const char* kDamageNames[4] = {"none", "slight", "moderate", "destroyed"};
 
 }  // namespace npsnet::node

@@ -285,7 +285,10 @@ void NetBridge::on_collision(const net::CollisionPdu& p) {
   if (res == world::Result::Bounce && third) {
     mine.set_vel = false;
   } else if (res == world::Result::Bounce) {
-    const double ma = std::max(1.0, static_cast<double>(p.mass));
+    // The issuer's mass as it says; left unset (0) or unusable: the mass of the kind its type
+    // maps to (models/entity_types.toml), as for the contacts we decide.
+    const double said = p.mass;
+    const double ma = std::isfinite(said) && said > 0 ? said : w.kinds[ents.kind[other]].mass_kg;
     const double mb = w.kinds[ents.kind[own]].mass_kg;
     Vec3 vb = ents.vel[own];
     vb += (collision::bounce_impulse(v_other, vb, ma, mb, n) / mb) * n;

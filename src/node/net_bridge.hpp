@@ -32,7 +32,9 @@
 //    collision, collision_type 1 = elastic (outcome bounce) or 0 = inelastic (outcome kill when
 //    the issuing entity's appearance says destroyed, else stop). The owner of the colliding
 //    entity injects the same collision record (same pair, same outcomes) and applies the outcome
-//    to its own entity once (a bounce by collision::bounce_impulse).
+//    to its own entity once (a bounce by collision::bounce_impulse, with the PDU's mass; a mass
+//    of 0 or not finite, as simulators that leave it unset send: the mass of the issuer's kind,
+//    the kind its DIS type maps to).
 //  * Fixed objects whose state changes are published as cultural-feature Entity States (kind 5,
 //    the object kind's DIS type): entity id (site, 0x8000 | application, object index + 1),
 //    damage in the standard appearance bits 3-4 (as vehicles, dis_mapping.hpp; was the state

@@ -61,31 +61,83 @@ int RemoteEntities::kind_for(int e, const net::EntityType& t) const {
 void RemoteEntities::on_entity_state(const net::EntityStatePdu& p, double now_s, double unix_now_s) {
   grow();
   if (!finite3(Eigen::Vector3d(p.location.x, p.location.y, p.location.z))) return;
-  const auto r = table_.apply(p, now_s, unix_now_s);
-  if (r == net::RemoteEntityTable::ApplyResult::Joined) {
-    if (auto i = table_.find(p.entity_id)) joined(*i);
-  } else if (r == net::RemoteEntityTable::ApplyResult::Deactivated) {
-    const int e = index_of(p.entity_id);
+  const Known before = known(p.entity_id);
+  settle(p.entity_id, table_.apply(p, now_s, unix_now_s), before, p.appearance);
+}
+
+void RemoteEntities::on_update(const net::EntityStateUpdatePdu& p, double now_s, double unix_now_s) {
+  grow();
+  const Known before = known(p.entity_id);
+  settle(p.entity_id, table_.apply(p, now_s, unix_now_s), before, p.appearance);
+}
+
+RemoteEntities::Known RemoteEntities::known(const net::EntityId& id) const {
+  const net::RemoteEntity* r = find(id);
+  return r ? Known{true, r->type, r->marking, r->appearance} : Known{};
+}
+
+const char* RemoteEntities::tracked_as(const net::EntityType& t) const {
+  const EntityChoice c = types_->resolve(t, sim_.world().kinds);
+  return c.kind < 0 ? c.track : "";
+}
+
+nlohmann::json RemoteEntities::tracked_event(const char* type, const net::EntityId& id, const net::EntityType& t,
+                                             const net::Marking& m) const {
+  const std::string marking = net::marking_text(m);
+  auto ev = event(type);
+  ev["id"] = marking.empty() ? id_text(id) : marking;
+  ev["entity"] = id_text(id);
+  ev["marking"] = marking;
+  ev["kind"] = type_text(t);
+  ev["tracked_as"] = tracked_as(t);
+  return ev;
+}
+
+void RemoteEntities::settle(const net::EntityId& id, net::RemoteEntityTable::ApplyResult r, const Known& before,
+                            std::uint32_t appearance) {
+  using R = net::RemoteEntityTable::ApplyResult;
+  if (r == R::Ignored) return;
+  if (r == R::Joined) {
+    if (auto i = table_.find(id)) joined(*i);
+  }
+  const int e = index_of(id);
+  if (r == R::Deactivated) {
     if (e >= 0 && sim_.world().ents.active[e]) {
       auto& ents = sim_.world().ents;
       ents.active[e] = 0, ents.vel[e] = Vec3::Zero();
       auto ev = event("entity_removed");  // its owner took it out of the exercise
       ev["id"] = ents.id[e];
-      ev["entity"] = id_text(p.entity_id);
-      ev["marking"] = net::marking_text(p.marking);
+      ev["entity"] = id_text(id);
+      ev["marking"] = net::marking_text(before.marking);
       ev["kind"] = sim_.world().kinds[ents.kind[e]].name;
       ev["state"] = sim_.world().kinds[ents.kind[e]].states[ents.state[e]];
+      log_.write(ev);
+    } else if (e < 0 && *tracked_as(before.type)) {
+      auto ev = tracked_event("entity_removed", id, before.type, before.marking);
+      ev["state"] = kDamageNames[damage_bits(before.appearance)];
       log_.write(ev);
     }
     return;
   }
+  const net::RemoteEntity* now = find(id);
+  if (!now) return;
+  if (e < 0) {  // tracked, not in the world: its damage bits as its owner says
+    const unsigned from = before.heard ? damage_bits(before.appearance) : 0, to = damage_bits(appearance);
+    if (from == to || !*tracked_as(now->type)) return;
+    auto ev = tracked_event("damage", id, now->type, now->marking);
+    ev["object"] = ev["id"];
+    ev.erase("id");
+    ev["from_state"] = kDamageNames[from];
+    ev["to_state"] = kDamageNames[to];
+    ev["remote"] = true;
+    log_.write(ev);
+    return;
+  }
   // Damage is the owner's: shown as its appearance says, also when it goes back (a repair).
-  const int e = index_of(p.entity_id);
-  if (e < 0) return;
   const auto& w = sim_.world();
-  const int k = kind_for(e, p.entity_type);
+  const int k = kind_for(e, now->type);
   if (k < 0) return;
-  const int to = state_from_appearance(w.kinds[k], p.appearance);
+  const int to = state_from_appearance(w.kinds[k], appearance);
   if (to != w.ents.state[e]) {
     world::EntityChange ch;
     ch.entity = e;
@@ -100,10 +152,6 @@ void RemoteEntities::inject(const world::EntityChange& ch) {
   inject_.entities.push_back(ch);
   sim_.inject(inject_);
   inject_.clear();
-}
-
-void RemoteEntities::on_update(const net::EntityStateUpdatePdu& p, double now_s, double unix_now_s) {
-  table_.apply(p, now_s, unix_now_s);
 }
 
 void RemoteEntities::joined(std::size_t ri) {
@@ -133,13 +181,8 @@ void RemoteEntities::joined(std::size_t ri) {
     } else {
       const EntityChoice c = types_->resolve(r.type, w.kinds);
       if (c.kind < 0 && *c.track) {  // tracked, not simulated: no model for what it is
-        auto ev = event("entity_joined");
-        ev["id"] = marking.empty() ? id_text(r.id) : marking;
-        ev["entity"] = id_text(r.id);
-        ev["marking"] = marking;
-        ev["kind"] = type_text(r.type);
+        auto ev = tracked_event("entity_joined", r.id, r.type, r.marking);
         ev["model"] = "none";
-        ev["tracked_as"] = c.track;
         log_.write(ev);
         return;
       }
@@ -172,7 +215,10 @@ void RemoteEntities::expire(double now_s) {
   world::World& w = sim_.world();
   table_.expire(now_s, [&](const net::RemoteEntity& r) {
     const int e = index_of(r.id);
-    if (e < 0) return;
+    if (e < 0) {  // tracked, not in the world
+      if (*tracked_as(r.type)) log_.write(tracked_event("entity_timeout", r.id, r.type, r.marking));
+      return;
+    }
     w.ents.active[e] = 0;
     w.ents.vel[e] = Vec3::Zero();
     auto ev = event("entity_timeout");

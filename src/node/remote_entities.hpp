@@ -10,10 +10,15 @@
 //    that moment, world axes: v + a t, body axes turned into the world) are set from
 //    RemoteEntityTable::displayed_pose (the "remote entity states -> World" stage of
 //    shared/ARCHITECTURE.md; only this stage writes remote poses and their active flag).
-//  * No update for the DR timeout deactivates it. Events entity_joined / entity_timeout: id
+//  * No update for the DR timeout deactivates it. Events entity_joined / entity_timeout /
+//    entity_removed (the owner's deactivation, in an Entity State or an Entity State Update): id
 //    (marking), entity "site:app:entity", marking, kind (or the DIS type when unknown, with
-//    model = the kind shown).
-//  * Damage from the owner's appearance goes to world::Changes (states only move forward).
+//    model = the kind shown). Tracked-only entities get the same three events (kind = the DIS
+//    type, tracked_as), so every remote entity's arrival and departure is logged.
+//  * Damage from the owner's appearance (Entity State or Update) goes to world::Changes, also
+//    backwards (a repair): a `damage` event with "remote": true. A tracked-only entity's damage
+//    bits changing are a `damage` event too: object, entity, kind (DIS type), tracked_as,
+//    from_state / to_state = none | slight | moderate | destroyed, "remote": true.
 // Ids: world entities keep their remote id across timeouts, so a rejoin reuses the entity.
 #pragma once
 #include <cstdint>
@@ -58,6 +63,24 @@ class RemoteEntities {
   std::string listing(double now_s, std::size_t max_lines = 100) const;
 
  private:
+  // What the table knew of an entity before a PDU was applied (heard = false: nothing).
+  struct Known {
+    bool heard = false;
+    net::EntityType type;
+    net::Marking marking;
+    std::uint32_t appearance = 0;
+  };
+  Known known(const net::EntityId& id) const;
+  // After an Entity State or Entity State Update was applied: join, removal (deactivation) and
+  // damage changes, for world entities and tracked-only ones alike.
+  void settle(const net::EntityId& id, net::RemoteEntityTable::ApplyResult r, const Known& before,
+              std::uint32_t appearance);
+  // What a type is tracked as when it is not put into the world ("lifeform", ...), else "".
+  const char* tracked_as(const net::EntityType& t) const;
+  // An event about a tracked-only entity: id (marking, or site:app:entity), entity, marking,
+  // kind (the DIS type), tracked_as.
+  nlohmann::json tracked_event(const char* type, const net::EntityId& id, const net::EntityType& t,
+                               const net::Marking& m) const;
   void joined(std::size_t table_index);
   // The kind a remote entity is shown as: its own when the owner's type matches, else the kind
   // of that type.

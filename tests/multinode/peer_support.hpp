@@ -3,6 +3,8 @@
 // tests/multinode/data, send it PDUs from a net::Session (application 50) and read what it sent
 // back and what it logged. Every wait is bounded in time.
 #pragma once
+#include <gtest/gtest.h>
+
 #include <chrono>
 #include <cstdio>
 #include <functional>
@@ -58,10 +60,36 @@ inline net::SessionConfig peer_config(int port, std::uint16_t app = 50) {
 inline npsnet::world::World world_of(const std::string& scenario) {
   return npsnet::world::build_world(npsnet::world::load_scenario(kData / scenario));
 }
+
+// One federate test's setup: the scenario's world, node 1 running it (start_node) and a peer on
+// its group (application 50). Its folder is removed at the end unless the test failed.
+struct Federate {
+  npsnet::world::World world;
+  lan::Procs procs;
+  Node node;
+  net::Session peer;
+  Federate(const std::string& tag, const std::string& scenario, double seconds, std::vector<std::string> extra = {},
+           std::vector<std::string> env = {})
+      : world(world_of(scenario)),
+        node(start_node(procs, tag, scenario, seconds, std::move(extra), std::move(env))),
+        peer(peer_config(node.port)) {}
+  ~Federate() {
+    if (!::testing::Test::HasFailure()) std::filesystem::remove_all(node.dir);
+  }
+  // Waits (at most timeout_s) for the node to end; a failure carries its output.
+  ::testing::AssertionResult finished(double timeout_s = 30.0) {
+    const int rc = procs.wait(node.pid, timeout_s);
+    if (rc == 0) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << "exit " << rc << ": " << lan::read_text(node.out);
+  }
+  std::vector<nlohmann::json> events() const { return lan::read_events(node.events); }
+  net::Vec3d ecef(double x, double y, double agl = 0) const;
+};
 inline net::Vec3d ecef(const npsnet::world::World& w, double x, double y, double agl = 0) {
   const auto p = w.terrain.frame().to_ecef(npsnet::Vec3(x, y, w.terrain.height(x, y) + agl));
   return {p.x(), p.y(), p.z()};
 }
+inline net::Vec3d Federate::ecef(double x, double y, double agl) const { return fed::ecef(world, x, y, agl); }
 inline npsnet::Vec3 local(const npsnet::world::World& w, const net::Vec3d& e) {
   return w.terrain.frame().from_ecef(npsnet::Vec3(e.x, e.y, e.z));
 }

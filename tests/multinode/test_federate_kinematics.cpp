@@ -12,6 +12,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <set>
 
 #include "peer_support.hpp"
 
@@ -99,4 +101,86 @@ TEST(FederateKinematics, ReceivedRpbFollowsItsCircle) {
   EXPECT_GT(met[0]["closing_speed_mps"].get<double>(), 12.0) << met[0].dump();
   EXPECT_LT(met[0]["closing_speed_mps"].get<double>(), 20.5) << met[0].dump();
   std::filesystem::remove_all(node.dir);
+}
+
+// Mass of a foreign entity (issue 10, defect 5/6), through the real path: a peer's heavy
+// vehicle (an M1A1's type: 63 t) and light one (a HMMWV's type: 2.4 t) meet our parked M1A1s
+// (63 t) in tests/multinode/data/federate_mass.toml, at 45 degrees (a bounce, Figure 7).
+//  * Contacts this node decides (t1, t2: the peer's vehicles drive into them at 10 m/s): the
+//    response uses the mass of the kind each foreign type maps to (models/entity_types.toml),
+//    so t1 is pushed about 14 times faster than t2 (momentum: 63 / (63 + 63) vs 2.4 / (2.4 + 63)).
+//  * Collision PDUs issued by the peer's vehicles onto t3 and t4 with mass 0 (left unset, as
+//    many simulators do): the issuer's mass is that of its mapped kind. The old node took 1 kg:
+//    neither tank moved.
+TEST(FederateKinematics, ForeignMassIsItsMappedKindsMass) {
+  fed::Federate f("fed_mass", "federate_mass.toml", 3.5);
+  const auto& w = f.world;
+  const auto& frame = w.terrain.frame();
+  auto& node = f.node;
+  auto& peer = f.peer;
+  const net::EntityType heavy{1, 1, 225, 1, 1, 3, 0}, light{1, 1, 225, 6, 1, 0, 0};  // m1a1, hmmwv
+  auto ecef_v = [&](double x, double y, double vx, double vy) {  // a local velocity in ECEF axes
+    const auto a = fed::ecef(w, x, y), b = fed::ecef(w, x + vx, y + vy);
+    return net::Vec3f{static_cast<float>(b.x - a.x), static_cast<float>(b.y - a.y), static_cast<float>(b.z - a.z)};
+  };
+  auto vehicle = [&](std::uint16_t n, const char* marking, net::EntityType type, double x, double y, double heading,
+                     double speed) {
+    net::EntityStatePdu p;
+    p.entity_id = peer.entity_id(n);
+    p.entity_type = type;
+    p.marking = net::make_marking(marking).value();
+    p.location = fed::ecef(w, x, y);
+    const auto eu = frame.to_dis_euler(npsnet::Vec3(x, y, 0), heading, 0, 0);
+    p.orientation = {static_cast<float>(eu.x()), static_cast<float>(eu.y()), static_cast<float>(eu.z())};
+    const double h = heading * 3.14159265358979 / 180;
+    p.linear_velocity = ecef_v(x, y, speed * std::sin(h), speed * std::cos(h));
+    p.dead_reckoning.algorithm = speed > 0 ? 2 : 1;  // FPW or static
+    return p;
+  };
+  // 10 m/s north-east, from 16 m south-west of t1 / t2: contact after about 0.6 s.
+  const double d = 16 / std::sqrt(2.0);
+  auto h1 = vehicle(1, "h1", heavy, 100 - d, 120 - d, 45, 10), l2 = vehicle(2, "l2", light, 300 - d, 120 - d, 45, 10);
+  // Standing 20 m north of t3 / t4, issuing Collision PDUs (5 m/s south, towards them).
+  auto h3 = vehicle(3, "h3", heavy, 100, 320, 180, 0), l4 = vehicle(4, "l4", light, 300, 320, 180, 0);
+  auto collision = [&](const net::EntityStatePdu& issuer, std::uint16_t ours, double x) {
+    net::CollisionPdu c;
+    c.issuing_entity_id = issuer.entity_id;
+    c.colliding_entity_id = {1, 1, ours};
+    c.event_id = {1, 50, ours};
+    c.collision_type = 1;  // elastic
+    c.velocity = ecef_v(x, 320, 0, -5);
+    c.mass = 0;
+    return c;
+  };
+  std::map<std::uint16_t, double> top_speed;  // our entity number -> fastest Entity State after 1.5 s
+  auto visit = net::Overloaded{[&](const net::EntityStatePdu& p) {
+    if (p.entity_id.site != 1 || p.entity_id.application != 1 || lan::unix_now() < node.start + 1.5) return;
+    const auto& v = p.linear_velocity;
+    top_speed[p.entity_id.entity] = std::max(top_speed[p.entity_id.entity], std::sqrt(double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z));
+  }};
+  fed::sleep_until(node.start + 0.3);
+  peer.send(h3), peer.send(l4);
+  fed::sleep_until(node.start + 0.6);
+  peer.send(h1), peer.send(l2);  // one Entity State each: the node dead-reckons them into t1 / t2
+  fed::poll_until(peer, node.start + 1.0, visit);
+  peer.send(collision(h3, 3, 100)), peer.send(collision(l4, 4, 300));
+  fed::poll_until(peer, node.start + 3.8, visit);
+  ASSERT_TRUE(f.finished());
+  const auto ev = f.events();
+  std::set<std::string> met;
+  for (const auto& c : fed::of_type(ev, "collision")) {
+    const std::string a = c["a"], b = c["b"];
+    met.insert(std::min(a, b) + "/" + std::max(a, b));
+  }
+  EXPECT_TRUE(met.count("h1/t1") && met.count("l2/t2")) << "the peer's vehicles drive into t1 and t2: " << ::testing::PrintToString(met);
+  EXPECT_TRUE(met.count("h3/t3") && met.count("l4/t4")) << "the Collision PDUs are logged: " << ::testing::PrintToString(met);
+  // Momentum exchanged (restitution e): |dv| = (1 + e) vn m_other / (m_other + m_ours).
+  const double heavy_share = 63000.0 / (63000 + 63000), light_share = 2400.0 / (2400 + 63000);
+  SCOPED_TRACE("t1 " + std::to_string(top_speed[1]) + " t2 " + std::to_string(top_speed[2]) + " t3 " +
+               std::to_string(top_speed[3]) + " t4 " + std::to_string(top_speed[4]) + " m/s");
+  ASSERT_GT(top_speed[2], 0.05) << "the light vehicle moves t2 a little";
+  EXPECT_NEAR(top_speed[1] / top_speed[2], heavy_share / light_share, 0.25 * heavy_share / light_share);
+  ASSERT_GT(top_speed[4], 0.05) << "a Collision PDU of mass 0: the issuer's mapped kind's mass, not 1 kg";
+  EXPECT_NEAR(top_speed[3] / top_speed[4], heavy_share / light_share, 0.25 * heavy_share / light_share);
+  EXPECT_NEAR(top_speed[3], 1.3 * 5 * heavy_share, 0.5) << "restitution 0.3, 5 m/s";
 }

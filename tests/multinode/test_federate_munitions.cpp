@@ -6,6 +6,8 @@
 // (but its blast), an HE ground impact its crater.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "peer_support.hpp"
 
 using nlohmann::json;
@@ -94,4 +96,72 @@ TEST(FederateMunitions, EachWarheadClassAndResultHasItsEffect) {
   EXPECT_EQ(t1_damage[0]["to_state"], "wreck");
   EXPECT_EQ(t1_damage[0]["t"], airburst_t);
   std::filesystem::remove_all(node.dir);
+}
+
+// A burst (issue 10, defect 3: quantity), through the real path. A peer's Fire and Detonation
+// of `quantity` rounds at one point: each round adds its blast levels (world/changes.hpp
+// DetonationRecord::quantity, collision::detonate): a vehicle in blast reach outside the inner
+// third goes `quantity` states on (inner third: destroyed), a fixed object `quantity` times the
+// levels of its distance; one crater whatever the quantity; the Fire is logged with its quantity
+// (its effect comes with its Detonation). HE rounds (blast 30 m) land 18 m from two of our
+// tanks: 2 rounds beside t1 wreck it (intact -> wreck), 1 round beside tank2 damages it; a burst
+// of 3 small-arms rounds (kinetic) on tank2 changes nothing. The old node (or one that ignores
+// the quantity) left t1 only damaged.
+TEST(FederateMunitions, BurstOfQuantityRoundsAddsEachRoundsBlast) {
+  fed::Federate f("fed_burst", "federate.toml", 3.5);
+  auto& node = f.node;
+  auto& peer = f.peer;
+  const net::EntityType he_type{2, 8, 225, 2, 14, 1, 0};    // our he_round's type
+  const net::EntityType rifle_type{2, 8, 225, 2, 1, 0, 0};  // a ballistic anti-personnel round
+  std::uint16_t event = 0;
+  auto fire_and_detonate = [&](net::EntityType type, std::uint16_t warhead, std::uint16_t quantity, double x, double y,
+                               std::uint8_t result, net::EntityId target) {  // the rounds leave and land at once
+    ++event;
+    net::FirePdu fire;
+    fire.firing_entity_id = peer.entity_id(1);
+    fire.target_entity_id = target;
+    fire.munition_id = peer.entity_id(static_cast<std::uint16_t>(100 + event));
+    fire.event_id = {1, 50, event};
+    fire.location = f.ecef(20, 20, 2.0);  // the peer's gun, off in a corner
+    fire.descriptor = {type, warhead, 1000, quantity, quantity > 1 ? std::uint16_t(600) : std::uint16_t(0)};
+    peer.send(fire);
+    net::DetonationPdu d;
+    d.firing_entity_id = fire.firing_entity_id;
+    d.target_entity_id = target;
+    d.exploding_entity_id = fire.munition_id;
+    d.event_id = fire.event_id;
+    d.location = f.ecef(x, y, 0.2);
+    d.descriptor = fire.descriptor;
+    d.detonation_result = result;
+    peer.send(d);
+  };
+  // tank2 drives east from (40, 360) at 10 m/s: at 1.0 s it is at x = 50.
+  fed::sleep_until(node.start + 0.5);
+  fire_and_detonate(he_type, 1000, 2, 218, 200, 3, {});  // 2 HE rounds 18 m east of t1
+  fed::sleep_until(node.start + 1.0);
+  const double t2_x = 40 + 10 * (lan::unix_now() - node.start);
+  fire_and_detonate(he_type, 1000, 1, t2_x, 378, 3, {});  // 1 HE round 18 m north of tank2
+  fed::sleep_until(node.start + 2.0);
+  fire_and_detonate(rifle_type, 5000, 3, 40 + 10 * (lan::unix_now() - node.start), 360, 1, {1, 1, 2});
+  ASSERT_LT(lan::unix_now(), node.start + 2.5) << "the peer fell behind its schedule";
+  ASSERT_TRUE(f.finished());
+  const auto ev = f.events();
+
+  const auto fires = fed::of_type(ev, "fire");
+  ASSERT_EQ(fires.size(), 3u);
+  EXPECT_EQ(fires[0]["quantity"], 2);
+  EXPECT_EQ(fires[0]["munition"], "he_round");
+  EXPECT_EQ(fires[2]["quantity"], 3);
+  EXPECT_EQ(fires[2]["warhead"], "kinetic");
+  const auto dets = fed::of_type(ev, "detonation");
+  ASSERT_EQ(dets.size(), 3u);
+  EXPECT_EQ(dets[0]["quantity"], 2);
+  EXPECT_EQ(dets[2]["quantity"], 3);
+  EXPECT_EQ(dets[2]["target"], "tank2");
+  EXPECT_EQ(fed::of_type(ev, "crater").size(), 2u) << "one crater per HE burst, none for the small arms";
+
+  std::map<std::string, std::vector<std::string>> states;
+  for (const auto& d : fed::of_type(ev, "damage")) states[d["object"].get<std::string>()].push_back(d["to_state"]);
+  EXPECT_EQ(states["t1"], (std::vector<std::string>{"wreck"})) << "2 rounds: two levels at once";
+  EXPECT_EQ(states["tank2"], (std::vector<std::string>{"damaged"})) << "1 round: one level; small arms: none";
 }
