@@ -3,13 +3,14 @@
 #include <algorithm>
 
 #include "node/dis_mapping.hpp"
+#include "node/table_file.hpp"
 
 namespace npsnet::node {
 
 namespace {
 int vehicle_kind_named(const world::KindTable& kinds, const std::string& name) {
-  const int k = name.empty() ? -1 : kinds.find(name);
-  return k >= 0 && kinds[k].mobile() && kinds[k].mobility != world::Mobility::Munition ? k : -1;
+  return kind_named(kinds, name,
+                    [](const world::Kind& k) { return k.mobile() && k.mobility != world::Mobility::Munition; });
 }
 }  // namespace
 
@@ -18,13 +19,10 @@ std::filesystem::path EntityTypeTable::default_file() {
 }
 
 EntityTypeTable EntityTypeTable::load(const std::filesystem::path& file) {
-  const std::string fname = file.string();
-  const toml::table root = world::parse_toml_file(fname);
-  std::vector<world::Problem> problems;
-  world::TomlReader r(fname, problems);
+  TableFile tf(file, {"default", "entity"});
+  world::TomlReader& r = tf.reader();
   EntityTypeTable out;
-  out.file_ = fname;
-  r.unknown_keys(root, "", {"default", "entity"});
+  out.file_ = tf.file();
   // kind = "..." or track = "...", exactly one.
   auto target = [&](const toml::table& t, const std::string& p, Entry& e) {
     e.kind = r.string(t, "kind", p + "kind", false, r.line(&t)).value_or("");
@@ -33,34 +31,18 @@ EntityTypeTable EntityTypeTable::load(const std::filesystem::path& file) {
     e.field = p + "kind";
     if (e.kind.empty() == e.track.empty()) r.problem(&t, p + "kind", "give either kind (a vehicle kind) or track (what it is)");
   };
-  if (const auto* d = root["default"].as_table()) {
-    r.unknown_keys(*d, "default.", {"kind", "track"});
+  if (const auto* d = tf.default_table({"kind", "track"}, "the kind of an entity no entry covers"))
     target(*d, "default.", out.default_);
-  } else {
-    r.problem(1, "default", "a [default] table with the kind of an entity no entry covers is required");
-  }
-  if (const toml::node* n = root.get("entity")) {
-    const toml::array* a = n->as_array();
-    if (!a) r.problem(n, "entity", "must be an array of tables [[entity]]");
-    for (size_t i = 0; a && i < a->size(); ++i) {
-      const std::string p = "entity[" + std::to_string(i) + "].";
-      const auto* t = a->get(i)->as_table();
-      if (!t) {
-        r.problem(a->get(i), p, "must be a table");
-        continue;
-      }
-      r.unknown_keys(*t, p, {"dis_type", "kind", "track"});
-      Entry e;
-      target(*t, p, e);
-      if (auto pat = read_type_pattern(r, *t, "dis_type", p + "dis_type", r.line(t))) {
-        e.type = *pat;
-        out.entries_.push_back(std::move(e));
-      }
+  tf.each("entity", {"dis_type", "kind", "track"}, [&](const toml::table& t, const std::string& p) {
+    Entry e;
+    target(t, p, e);
+    if (auto pat = read_type_pattern(r, t, "dis_type", p + "dis_type", r.line(&t))) {
+      e.type = *pat;
+      out.entries_.push_back(std::move(e));
     }
-  }
-  if (!problems.empty()) throw world::InputError(std::move(problems));
-  std::stable_sort(out.entries_.begin(), out.entries_.end(),
-                   [](const Entry& a, const Entry& b) { return a.type.given > b.type.given; });
+  });
+  tf.finish();
+  sort_most_specific(out.entries_);
   return out;
 }
 

@@ -1,8 +1,9 @@
 // What another simulator's entity is here: models/entity_types.toml (its header says the order
 // of decision) applied to an Entity State's entity type.
-//  * load(file): every problem as FILE:LINE: field: message (world::InputError). Kind names are
-//    looked up when a type is resolved, in the world's kinds (a scenario's own kinds file may
-//    lack some: such entries are skipped); check_kinds reports them against a kinds table.
+//  * load(file) (read by node/table_file.hpp): every problem as FILE:LINE: field: message
+//    (world::InputError). Kind names are looked up when a type is resolved, in the world's
+//    kinds (a scenario's own kinds file may lack some: such entries are skipped); check_kinds
+//    reports them against a kinds table.
 //  * resolve(type, kinds): the vehicle kind it is shown and simulated as, or kind -1 and `track`
 //    = what it is (e.g. "lifeform") when it is tracked but not put into the world. The strings
 //    live as long as the table.

@@ -3,13 +3,13 @@
 #include <algorithm>
 
 #include "node/dis_mapping.hpp"
+#include "node/table_file.hpp"
 
 namespace npsnet::node {
 
 namespace {
 int munition_kind_named(const world::KindTable& kinds, const std::string& name) {
-  const int k = name.empty() ? -1 : kinds.find(name);
-  return k >= 0 && kinds[k].mobility == world::Mobility::Munition ? k : -1;
+  return kind_named(kinds, name, [](const world::Kind& k) { return k.mobility == world::Mobility::Munition; });
 }
 }  // namespace
 
@@ -18,43 +18,24 @@ std::filesystem::path MunitionTable::default_file() {
 }
 
 MunitionTable MunitionTable::load(const std::filesystem::path& file) {
-  const std::string fname = file.string();
-  const toml::table root = world::parse_toml_file(fname);
-  std::vector<world::Problem> problems;
-  world::TomlReader r(fname, problems);
+  TableFile tf(file, {"default", "munition", "warhead"});
+  world::TomlReader& r = tf.reader();
   MunitionTable out;
-  out.file_ = fname;
-  r.unknown_keys(root, "", {"default", "munition", "warhead"});
+  out.file_ = tf.file();
   auto kind_of = [&](const toml::table& t, const std::string& p, bool required) {
     const auto k = r.string(t, "kind", p + "kind", required, r.line(&t)).value_or("");
     if (!k.empty()) out.named_.push_back({k, r.line(t.get("kind")), p + "kind"});
     return k;
   };
-  if (const auto* d = root["default"].as_table()) {
-    r.unknown_keys(*d, "default.", {"kind"});
+  if (const auto* d = tf.default_table({"kind"}, "the kind of a round no class covers"))
     out.default_kind_ = kind_of(*d, "default.", true);
-  } else {
-    r.problem(1, "default", "a [default] table with the kind of a round no class covers is required");
-  }
-  auto each = [&](const char* key, auto&& fn) {
-    const toml::node* n = root.get(key);
-    if (!n) return;
-    const toml::array* a = n->as_array();
-    if (!a) return r.problem(n, key, "must be an array of tables [[" + std::string(key) + "]]");
-    for (size_t i = 0; i < a->size(); ++i) {
-      const std::string p = std::string(key) + "[" + std::to_string(i) + "].";
-      if (const auto* t = a->get(i)->as_table()) fn(*t, p);
-      else r.problem(a->get(i), p, "must be a table");
-    }
-  };
-  each("munition", [&](const toml::table& t, const std::string& p) {
-    r.unknown_keys(t, p, {"dis_type", "kind"});
+  tf.each("munition", {"dis_type", "kind"}, [&](const toml::table& t, const std::string& p) {
     auto pat = read_type_pattern(r, t, "dis_type", p + "dis_type", r.line(&t));
     auto k = kind_of(t, p, true);
     if (pat) out.types_.push_back({*pat, k});
   });
-  each("warhead", [&](const toml::table& t, const std::string& p) {
-    r.unknown_keys(t, p, {"name", "codes", "kind", "crater", "blast", "hit_destroys"});
+  tf.each("warhead", {"name", "codes", "kind", "crater", "blast", "hit_destroys"},
+          [&](const toml::table& t, const std::string& p) {
     WarheadClass c;
     c.name = r.string(t, "name", p + "name", true, r.line(&t)).value_or("");
     if (const auto codes = r.numbers(t, "codes", p + "codes", 2, 2, true, r.line(&t))) {
@@ -72,9 +53,8 @@ MunitionTable MunitionTable::load(const std::filesystem::path& file) {
       if (c.lo <= o.hi && o.lo <= c.hi) r.problem(t.get("codes"), p + "codes", "overlaps warhead class '" + o.name + "'");
     out.warheads_.push_back(std::move(c));
   });
-  if (!problems.empty()) throw world::InputError(std::move(problems));
-  std::stable_sort(out.types_.begin(), out.types_.end(),
-                   [](const TypeEntry& a, const TypeEntry& b) { return a.type.given > b.type.given; });
+  tf.finish();
+  sort_most_specific(out.types_);
   return out;
 }
 

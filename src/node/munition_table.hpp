@@ -1,9 +1,9 @@
 // What another simulator's round is here: models/munitions.toml (its header says the order of
 // decision) applied to a Fire / Detonation munition descriptor (entity type, warhead code).
-//  * load(file) reads the table; every problem as FILE:LINE: field: message (world::InputError).
-//    Kind names are looked up when a round is resolved, in the world's kinds (a scenario's own
-//    kinds file may lack some: such entries are skipped); `npsnet check` checks them against
-//    the bundled kinds (check_kinds).
+//  * load(file) reads the table (node/table_file.hpp); every problem as FILE:LINE: field:
+//    message (world::InputError). Kind names are looked up when a round is resolved, in the
+//    world's kinds (a scenario's own kinds file may lack some: such entries are skipped);
+//    `npsnet check` checks them against the bundled kinds (check_kinds).
 //  * effect(descriptor, kinds): the munition kind whose radii apply (-1: the kinds have no
 //    munition at all), the name events give it (the kind's, or the generic class's: "smoke"),
 //    the warhead class name ("other" when no class covers the code) and what it may do: crater,

@@ -1,13 +1,16 @@
 // A node under test and a DIS peer beside it on loopback multicast (127.0.0.1, a random port):
 // the federate tests (test_federate_*.cpp) start `npsnet run --net` with a scenario of
 // tests/multinode/data, send it PDUs from a net::Session (application 50) and read what it sent
-// back and what it logged. Every wait is bounded in time.
+// back and what it logged. Every wait is bounded in time. Each test holds only its own steps:
+// fed::Federate is the setup (world, node, peer), entity_state / detonation / orientation /
+// ecef_velocity / set_marking_bytes build the PDUs a peer sends.
 #pragma once
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <initializer_list>
 #include <string>
 #include <thread>
 #include <vector>
@@ -93,6 +96,54 @@ inline net::Vec3d Federate::ecef(double x, double y, double agl) const { return 
 inline npsnet::Vec3 local(const npsnet::world::World& w, const net::Vec3d& e) {
   return w.terrain.frame().from_ecef(npsnet::Vec3(e.x, e.y, e.z));
 }
+
+// The DIS orientation (psi, theta, phi) of compass heading `heading_deg`, level, at (x, y).
+inline net::EulerAnglesF orientation(const npsnet::world::World& w, double x, double y, double heading_deg) {
+  const auto eu = w.terrain.frame().to_dis_euler(npsnet::Vec3(x, y, 0), heading_deg, 0, 0);
+  return {static_cast<float>(eu.x()), static_cast<float>(eu.y()), static_cast<float>(eu.z())};
+}
+// A local velocity (vx east, vy north, m/s) at (x, y) in ECEF axes, as world-axis DR sends it.
+inline net::Vec3f ecef_velocity(const npsnet::world::World& w, double x, double y, double vx, double vy) {
+  const auto a = ecef(w, x, y), b = ecef(w, x + vx, y + vy);
+  return {static_cast<float>(b.x - a.x), static_cast<float>(b.y - a.y), static_cast<float>(b.z - a.z)};
+}
+
+// An Entity State of the peer's entity `n`: `type`, `marking`, standing at `at` (DR static).
+inline net::EntityStatePdu entity_state(const net::Session& peer, std::uint16_t n, const net::EntityType& type,
+                                        const char* marking, const net::Vec3d& at) {
+  net::EntityStatePdu p;
+  p.entity_id = peer.entity_id(n);
+  p.entity_type = type;
+  p.marking = net::make_marking(marking).value();
+  p.location = at;
+  p.dead_reckoning.algorithm = 1;
+  return p;
+}
+// The marking's 11 characters set to raw octets (e.g. Latin-1 "T\xC4NK"), character set kept.
+inline void set_marking_bytes(net::EntityStatePdu& p, std::initializer_list<unsigned char> octets) {
+  p.marking.characters = {};
+  size_t i = 0;
+  for (unsigned char c : octets)
+    if (i < p.marking.characters.size()) p.marking.characters[i++] = static_cast<char>(c);
+}
+
+// A Detonation of the peer's round `round` (exploding entity 100 + round, event round + 1; fired by
+// its entity 1) of `type` with warhead, fuse, quantity, landing at `at` with `result`.
+inline net::DetonationPdu detonation(const net::Session& peer, std::uint16_t round, const net::EntityType& type,
+                                     std::uint16_t warhead, std::uint16_t fuse, std::uint16_t quantity,
+                                     std::uint8_t result, const net::Vec3d& at, net::EntityId target = {}) {
+  net::DetonationPdu d;
+  d.firing_entity_id = peer.entity_id(1);
+  d.target_entity_id = target;
+  d.exploding_entity_id = peer.entity_id(static_cast<std::uint16_t>(100 + round));
+  d.event_id = {peer.entity_id(1).site, peer.entity_id(1).application, static_cast<std::uint16_t>(round + 1)};
+  d.location = at;
+  d.descriptor = {type, warhead, fuse, quantity, 0};
+  d.detonation_result = result;
+  return d;
+}
+inline const net::EntityType kHeRound{2, 8, 225, 2, 14, 1, 0};  // our he_round's type
+inline const net::EntityType kM1a1{1, 1, 225, 1, 1, 3, 0};      // our m1a1's type
 
 // Sleeps until UNIX time t (bounded by the caller's schedule).
 inline void sleep_until(double t) {

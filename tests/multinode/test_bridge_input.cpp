@@ -7,48 +7,19 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <thread>
 
-#include "lan_support.hpp"
-#include "net/net.hpp"
-#include "world/scenario.hpp"
-
-namespace {
-const std::filesystem::path kData = std::filesystem::path(NPSNET_SOURCE_DIR) / "tests" / "multinode" / "data";
-}
+#include "peer_support.hpp"
 
 TEST(BridgeInput, HostileAndUnknownPdusAreHandled) {
-  const auto scenario = kData / "rejoin.toml";
-  const auto w = npsnet::world::build_world(npsnet::world::load_scenario(scenario));
-  const auto& frame = w.terrain.frame();
-  auto ecef = [&](double x, double y) {
-    const auto p = frame.to_ecef(npsnet::Vec3(x, y, w.terrain.height(x, y)));
-    return net::Vec3d{p.x(), p.y(), p.z()};
-  };
-
-  const auto dir = lan::fresh_dir("bridge_input");
-  const int port = lan::random_port();
-  const double start = lan::unix_now() + 1.0;
-  char s[64];
-  std::snprintf(s, sizeof s, "%.3f", start);
-  lan::Procs procs;
-  const auto events = dir / "events.jsonl";
-  const int pid = procs.start({"run", "--scenario", scenario.string(), "--net", "udp://239.1.2.3:" + std::to_string(port),
-                               "--iface", "127.0.0.1", "--node", "1", "--start-at", s, "--no-render", "--seconds", "4",
-                               "--events", events.string(), "--snapshots", (dir / "snap").string()},
-                              dir / "out.txt");
-  net::SessionConfig cfg;
-  cfg.transport.url = "udp://239.1.2.3:" + std::to_string(port);
-  cfg.transport.iface = "127.0.0.1";
-  cfg.application = 50;
-  net::Session peer(cfg);
-
+  fed::Federate f("bridge_input", "rejoin.toml", 4);
+  const auto& node = f.node;
+  const double start = node.start;
+  auto& peer = f.peer;
+  auto ecef = [&](double x, double y) { return f.ecef(x, y); };
   auto es_of = [&](std::uint16_t entity, net::EntityType type, const char* marking, net::Vec3d at) {
-    net::EntityStatePdu p;
-    p.entity_id = peer.entity_id(entity);
-    p.entity_type = type;
-    p.marking = net::make_marking(marking).value();
-    p.location = at;
+    auto p = fed::entity_state(peer, entity, type, marking, at);
     p.dead_reckoning.algorithm = 2;
     return p;
   };
@@ -92,8 +63,8 @@ TEST(BridgeInput, HostileAndUnknownPdusAreHandled) {
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
-  ASSERT_EQ(procs.wait(pid, 30.0), 0) << lan::read_text(dir / "out.txt");
-  const auto ev = lan::read_events(events);
+  ASSERT_TRUE(f.finished());
+  const auto ev = f.events();
   int craters = 0, detonations = 0;
   std::map<std::string, nlohmann::json> joined;
   for (const auto& e : ev) {
@@ -115,8 +86,7 @@ TEST(BridgeInput, HostileAndUnknownPdusAreHandled) {
   EXPECT_FALSE(joined.count("bad")) << "a non-finite position never enters the world";
   EXPECT_EQ(detonations, 1) << "only the on-map detonation with finite position";
   EXPECT_EQ(craters, 1);
-  const std::string out = lan::read_text(dir / "out.txt");
+  const std::string out = lan::read_text(node.out);
   EXPECT_NE(out.find("length_exceeds_data=1"), std::string::npos) << out;
   EXPECT_NE(out.find("truncated_header=1"), std::string::npos) << out;
-  std::filesystem::remove_all(dir);
 }

@@ -13,12 +13,10 @@
 #include "peer_support.hpp"
 
 TEST(FederateIdentity, ClashReportedOnceEchoNeverDisVersionSix) {
-  const auto w = fed::world_of("federate.toml");
-  lan::Procs procs;
   // Heartbeat 0.5 s: our own echo comes back several times before the clash.
-  auto node = fed::start_node(procs, "fed_identity", "federate.toml", 4.0, {"--dis-version", "6"},
-                              {"NPSNET_DIS_TIMEOUT_S=1.2"});
-  net::Session listener(fed::peer_config(node.port));
+  fed::Federate f("fed_identity", "federate.toml", 4.0, {"--dis-version", "6"}, {"NPSNET_DIS_TIMEOUT_S=1.2"});
+  const auto& node = f.node;
+  auto& listener = f.peer;
   std::vector<std::uint8_t> versions;
   auto visit = net::Overloaded{[&](const net::EntityStatePdu& p) {
     if (p.entity_id.site == 1 && p.entity_id.application == 1 && p.entity_id.entity != 40)  // not the impostor
@@ -28,17 +26,12 @@ TEST(FederateIdentity, ClashReportedOnceEchoNeverDisVersionSix) {
   const double clash_at = lan::unix_now() - node.start;
   {
     net::Session impostor(fed::peer_config(node.port, 1));  // site 1, application 1: ours
-    net::EntityStatePdu es;
-    es.entity_id = impostor.entity_id(40);
-    es.entity_type = {1, 1, 225, 1, 1, 3, 0};
-    es.marking = net::make_marking("imp").value();
-    es.location = fed::ecef(w, 300, 300);
-    es.dead_reckoning.algorithm = 1;
+    const auto es = fed::entity_state(impostor, 40, fed::kM1a1, "imp", f.ecef(300, 300));
     for (int i = 0; i < 5; ++i) impostor.send(es);
   }
   fed::poll_until(listener, node.start + 4.5, visit);
-  ASSERT_EQ(procs.wait(node.pid, 30.0), 0) << lan::read_text(node.out);
-  const auto ev = lan::read_events(node.events);
+  ASSERT_TRUE(f.finished());
+  const auto ev = f.events();
   const auto clash = fed::of_type(ev, "id_clash");
   ASSERT_EQ(clash.size(), 1u) << "once, however many PDUs";
   EXPECT_GE(clash[0]["t"].get<double>(), clash_at - 0.2) << "our own echo before it is not a clash";
@@ -48,18 +41,16 @@ TEST(FederateIdentity, ClashReportedOnceEchoNeverDisVersionSix) {
   EXPECT_TRUE(fed::of_type(ev, "entity_joined").empty()) << "the impostor's entities are not joined";
   ASSERT_FALSE(versions.empty());
   for (auto v : versions) EXPECT_EQ(v, 6);
-  std::filesystem::remove_all(node.dir);
 }
 
 TEST(FederateIdentity, CulturalFeatureDamageInAppearanceBits3And4) {
-  lan::Procs procs;
-  auto node = fed::start_node(procs, "fed_cultural", "federate.toml", 3.0);
-  net::Session peer(fed::peer_config(node.port));
-  const auto w = fed::world_of("federate.toml");
+  fed::Federate f("fed_cultural", "federate.toml", 3.0);
+  const auto& node = f.node;
+  auto& peer = f.peer;
   net::EntityStatePdu tree;  // treeA, object 0: entity 1 of the peer's cultural application
   tree.entity_id = {1, 0x8000 | 50, 1};
   tree.entity_type = {5, 1, 0, 1, 1, 0, 0};
-  tree.location = fed::ecef(w, 310, 110);
+  tree.location = f.ecef(310, 110);
   tree.appearance = 1u << 3;  // damage: slight
   std::vector<net::EntityStatePdu> heard;
   auto visit = net::Overloaded{[&](const net::EntityStatePdu& p) {
@@ -71,12 +62,11 @@ TEST(FederateIdentity, CulturalFeatureDamageInAppearanceBits3And4) {
   tree.appearance = 3u << 3;  // destroyed
   peer.send(tree);
   fed::poll_until(peer, node.start + 3.5, visit);
-  ASSERT_EQ(procs.wait(node.pid, 30.0), 0) << lan::read_text(node.out);
+  ASSERT_TRUE(f.finished());
   std::vector<std::string> states;
-  for (const auto& d : fed::of_type(lan::read_events(node.events), "damage"))
+  for (const auto& d : fed::of_type(f.events(), "damage"))
     if (d["object"] == "treeA") states.push_back(d["to_state"]);
   EXPECT_EQ(states, (std::vector<std::string>{"damaged", "stump"}));
-  std::filesystem::remove_all(node.dir);
 }
 
 // A soldier (life form, entity kind 3) and another simulator's building (cultural feature,
@@ -84,32 +74,19 @@ TEST(FederateIdentity, CulturalFeatureDamageInAppearanceBits3And4) {
 // model that collides); now they are tracked as what they are and not put into the world:
 // the peer's soldier standing on our parked t1 collides with nothing.
 TEST(FederateIdentity, LifeformsAndForeignCulturalFeaturesAreNotVehicles) {
-  const auto w = fed::world_of("federate.toml");
-  lan::Procs procs;
-  auto node = fed::start_node(procs, "fed_lifeform", "federate.toml", 2.5);
-  net::Session peer(fed::peer_config(node.port));
-  net::EntityStatePdu soldier;
-  soldier.entity_id = peer.entity_id(7);
-  soldier.entity_type = {3, 1, 225, 1, 0, 0, 0};
-  soldier.marking = net::make_marking("inf1").value();
-  soldier.location = fed::ecef(w, 200, 200);  // on t1
-  soldier.dead_reckoning.algorithm = 1;
-  auto building = soldier;
-  building.entity_id = peer.entity_id(8);
-  building.entity_type = {5, 1, 225, 3, 1, 0, 0};
-  building.marking = net::make_marking("bldg").value();
-  building.location = fed::ecef(w, 250, 250);
-  auto jeep = soldier;  // a land platform no kind has: still a generic ground vehicle
-  jeep.entity_id = peer.entity_id(9);
-  jeep.entity_type = {1, 1, 222, 6, 1, 0, 0};
-  jeep.marking = net::make_marking("j9").value();
-  jeep.location = fed::ecef(w, 300, 300);
+  fed::Federate f("fed_lifeform", "federate.toml", 2.5);
+  const auto& node = f.node;
+  auto& peer = f.peer;
+  const auto soldier = fed::entity_state(peer, 7, {3, 1, 225, 1, 0, 0, 0}, "inf1", f.ecef(200, 200));  // on t1
+  const auto building = fed::entity_state(peer, 8, {5, 1, 225, 3, 1, 0, 0}, "bldg", f.ecef(250, 250));
+  // a land platform no kind has: still a generic ground vehicle
+  const auto jeep = fed::entity_state(peer, 9, {1, 1, 222, 6, 1, 0, 0}, "j9", f.ecef(300, 300));
   for (int i = 0; i < 5; ++i) {
     fed::sleep_until(node.start + 0.3 + 0.3 * i);
     peer.send(soldier), peer.send(building), peer.send(jeep);
   }
-  ASSERT_EQ(procs.wait(node.pid, 30.0), 0) << lan::read_text(node.out);
-  const auto ev = lan::read_events(node.events);
+  ASSERT_TRUE(f.finished());
+  const auto ev = f.events();
   std::map<std::string, nlohmann::json> joined;
   for (const auto& e : fed::of_type(ev, "entity_joined")) joined[e["marking"].get<std::string>()] = e;
   ASSERT_EQ(joined.size(), 3u);
@@ -119,5 +96,4 @@ TEST(FederateIdentity, LifeformsAndForeignCulturalFeaturesAreNotVehicles) {
   EXPECT_EQ(joined["j9"]["model"], "generic_ground");
   for (const auto& c : fed::of_type(ev, "collision")) EXPECT_NE(c["b"], "inf1") << c.dump();
   for (const auto& c : fed::of_type(ev, "collision")) EXPECT_NE(c["a"], "inf1") << c.dump();
-  std::filesystem::remove_all(node.dir);
 }

@@ -2,7 +2,6 @@
 // by a net::Session into a running `npsnet run --net` on loopback multicast.
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <random>
 
 #include "peer_support.hpp"
@@ -11,14 +10,9 @@ namespace {
 
 using nlohmann::json;
 
+// An M1A1, as our kinds file has it, standing at `at`.
 net::EntityStatePdu vehicle_es(const net::Session& peer, std::uint16_t entity, const char* marking, net::Vec3d at) {
-  net::EntityStatePdu p;
-  p.entity_id = peer.entity_id(entity);
-  p.entity_type = {1, 1, 225, 1, 1, 3, 0};  // an M1A1, as our kinds file has it
-  p.marking = net::make_marking(marking).value();
-  p.location = at;
-  p.dead_reckoning.algorithm = 1;
-  return p;
+  return fed::entity_state(peer, entity, fed::kM1a1, marking, at);
 }
 
 // Every line of the log is JSON (read_events throws otherwise) and valid UTF-8 (dump throws).
@@ -35,21 +29,17 @@ std::vector<json> read_valid_log(const std::filesystem::path& f) {
 // other bytes (control characters, no NUL, unknown character sets) and randomly corrupted PDUs
 // of every type must leave it running. Markings are decoded by their character set.
 TEST(FederateInput, AnyMarkingAndAnyBytesLeaveTheNodeRunning) {
-  const auto w = fed::world_of("federate.toml");
-  lan::Procs procs;
-  auto node = fed::start_node(procs, "fed_bytes", "federate.toml", 4);
-  net::Session peer(fed::peer_config(node.port));
+  fed::Federate f("fed_bytes", "federate.toml", 4);
+  const auto& node = f.node;
+  auto& peer = f.peer;
 
-  auto latin = vehicle_es(peer, 1, "x", fed::ecef(w, 300, 300));
-  const char tank[] = {'T', static_cast<char>(0xC4), 'N', 'K'};
-  latin.marking.characters = {};
-  std::memcpy(latin.marking.characters.data(), tank, sizeof tank);
-  auto controls = vehicle_es(peer, 2, "x", fed::ecef(w, 320, 300));
-  const unsigned char junk[11] = {0x01, 'A', 0x7F, 0x9B, '"', '\\', 0xFF, 0x0A, 0xC3, 0x28, 0x80};  // no NUL
-  std::memcpy(controls.marking.characters.data(), junk, 11);
-  auto chevron = vehicle_es(peer, 3, "12", fed::ecef(w, 340, 300));
+  auto latin = vehicle_es(peer, 1, "x", f.ecef(300, 300));
+  fed::set_marking_bytes(latin, {'T', 0xC4, 'N', 'K'});
+  auto controls = vehicle_es(peer, 2, "x", f.ecef(320, 300));
+  fed::set_marking_bytes(controls, {0x01, 'A', 0x7F, 0x9B, '"', '\\', 0xFF, 0x0A, 0xC3, 0x28, 0x80});  // no NUL
+  auto chevron = vehicle_es(peer, 3, "12", f.ecef(340, 300));
   chevron.marking.character_set = 3;
-  auto unknown_set = vehicle_es(peer, 4, "x", fed::ecef(w, 360, 300));
+  auto unknown_set = vehicle_es(peer, 4, "x", f.ecef(360, 300));
   unknown_set.marking.character_set = 200;
   unknown_set.marking.characters[0] = static_cast<char>(0xE9);
 
@@ -62,17 +52,17 @@ TEST(FederateInput, AnyMarkingAndAnyBytesLeaveTheNodeRunning) {
   };
   net::FirePdu fire;
   fire.firing_entity_id = peer.entity_id(1);
-  fire.location = fed::ecef(w, 300, 300);
+  fire.location = f.ecef(300, 300);
   net::DetonationPdu det;
   det.firing_entity_id = peer.entity_id(1);
-  det.location = fed::ecef(w, 200, 100);
+  det.location = f.ecef(200, 100);
   det.detonation_result = 3;
   net::CollisionPdu col;
   col.issuing_entity_id = peer.entity_id(1);
   col.colliding_entity_id = {1, 1, 1};
   net::EntityStateUpdatePdu esu;
   esu.entity_id = peer.entity_id(1);
-  esu.location = fed::ecef(w, 300, 300);
+  esu.location = f.ecef(300, 300);
   seeds = {bytes(latin), bytes(fire), bytes(det), bytes(col), bytes(esu)};
   std::mt19937 rng(1278);
   std::vector<std::vector<std::uint8_t>> corrupt;
@@ -93,7 +83,7 @@ TEST(FederateInput, AnyMarkingAndAnyBytesLeaveTheNodeRunning) {
     for (int k = 0; k < 60 && next < corrupt.size(); ++k) peer.transport().send(corrupt[next++]);
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
-  ASSERT_EQ(procs.wait(node.pid, 30.0), 0) << lan::read_text(node.out);
+  ASSERT_TRUE(f.finished());
   const auto ev = read_valid_log(node.events);
   std::map<std::string, json> joined;
   for (const auto& e : fed::of_type(ev, "entity_joined")) joined[e["entity"].get<std::string>()] = e;
@@ -108,7 +98,6 @@ TEST(FederateInput, AnyMarkingAndAnyBytesLeaveTheNodeRunning) {
   EXPECT_EQ(joined["1:50:3"]["marking"], "12");
   ASSERT_TRUE(joined.count("1:50:4"));
   EXPECT_EQ(joined["1:50:4"]["marking"], "\xC3\xA9");
-  std::filesystem::remove_all(node.dir);
 }
 
 // Defect 2 (and 7): the node decided damage for entities it does not own. A peer's tank r1 sits
@@ -117,33 +106,18 @@ TEST(FederateInput, AnyMarkingAndAnyBytesLeaveTheNodeRunning) {
 // the owner's appearance changes r1 (destroyed, then repaired: a state may go back), and the
 // peer's round beside treeA leaves treeA to the firing node. Removals are logged.
 TEST(FederateInput, RemoteDamageIsDecidedByItsOwner) {
-  const auto w = fed::world_of("federate.toml");
-  lan::Procs procs;
-  auto node = fed::start_node(procs, "fed_owner", "federate.toml", 5.5);
-  net::Session peer(fed::peer_config(node.port));
+  fed::Federate f("fed_owner", "federate.toml", 5.5);
+  const auto& node = f.node;
+  auto& peer = f.peer;
 
-  auto r1 = vehicle_es(peer, 1, "r1", fed::ecef(w, 300, 300));
-  auto r2 = vehicle_es(peer, 2, "r2", fed::ecef(w, 170, 200));
-  r2.entity_type = {1, 1, 222, 2, 1, 0, 0};  // bmp
-  r2.dead_reckoning.algorithm = 2;           // FPW, 10 m/s east (ECEF axes)
-  const auto e0 = fed::ecef(w, 170, 200), e1 = fed::ecef(w, 180, 200);
-  r2.linear_velocity = {static_cast<float>(e1.x - e0.x), static_cast<float>(e1.y - e0.y), static_cast<float>(e1.z - e0.z)};
-  {
-    const auto& f = w.terrain.frame();
-    const auto eu = f.to_dis_euler(npsnet::Vec3(170, 200, 0), 90.0, 0, 0);
-    r2.orientation = {static_cast<float>(eu.x()), static_cast<float>(eu.y()), static_cast<float>(eu.z())};
-  }
+  auto r1 = vehicle_es(peer, 1, "r1", f.ecef(300, 300));
+  auto r2 = vehicle_es(peer, 2, "r2", f.ecef(170, 200));
+  r2.entity_type = {1, 1, 222, 2, 1, 0, 0};                            // bmp
+  r2.dead_reckoning.algorithm = 2;                                     // FPW, 10 m/s east (ECEF axes)
+  r2.linear_velocity = fed::ecef_velocity(f.world, 170, 200, 10, 0);
+  r2.orientation = fed::orientation(f.world, 170, 200, 90.0);
   auto he = [&](double x, double y, std::uint8_t result, net::EntityId target, std::uint16_t n) {
-    net::DetonationPdu d;
-    d.firing_entity_id = peer.entity_id(1);
-    d.target_entity_id = target;
-    d.exploding_entity_id = peer.entity_id(static_cast<std::uint16_t>(100 + n));
-    d.event_id = {1, 50, n};
-    d.location = fed::ecef(w, x, y, 0.5);
-    d.descriptor.munition_type = {2, 8, 225, 2, 14, 1, 0};  // our he_round's type
-    d.descriptor.warhead = 1000, d.descriptor.fuse = 1000, d.descriptor.quantity = 1;
-    d.detonation_result = result;
-    return d;
+    return fed::detonation(peer, n, fed::kHeRound, 1000, 1000, 1, result, f.ecef(x, y, 0.5), target);
   };
   const double t0 = node.start;
   bool sent_beside = false, sent_on = false, sent_tree = false;
@@ -155,7 +129,7 @@ TEST(FederateInput, RemoteDamageIsDecidedByItsOwner) {
     if (t > 0.5 && t < 4.0) {  // r2 drives east from x = 170 from t = 0.5 s
       if (r2_sent_from < 0) r2_sent_from = t;
       const double x = 170 + 10 * (t - r2_sent_from);
-      r2.location = fed::ecef(w, x, 200);
+      r2.location = f.ecef(x, 200);
       peer.send(r2);
     }
     if (t > 1.0 && !sent_beside) sent_beside = true, peer.send(he(305, 300, 3, {}, 1));
@@ -166,7 +140,7 @@ TEST(FederateInput, RemoteDamageIsDecidedByItsOwner) {
   auto gone = r1;
   gone.appearance = net::kAppearanceDeactivated;
   peer.send(gone);
-  ASSERT_EQ(procs.wait(node.pid, 30.0), 0) << lan::read_text(node.out);
+  ASSERT_TRUE(f.finished());
   const auto ev = read_valid_log(node.events);
   EXPECT_EQ(fed::of_type(ev, "detonation").size(), 3u);
   std::vector<std::string> r1_states;
@@ -186,5 +160,4 @@ TEST(FederateInput, RemoteDamageIsDecidedByItsOwner) {
   const auto removed = fed::of_type(ev, "entity_removed");
   ASSERT_EQ(removed.size(), 1u);
   EXPECT_EQ(removed[0]["id"], "r1");
-  std::filesystem::remove_all(node.dir);
 }

@@ -18,29 +18,22 @@
 #include "peer_support.hpp"
 
 TEST(FederateKinematics, SentStatesAreStampedWithTheirTimeAndFilteredAcceleration) {
-  const auto w = fed::world_of("federate.toml");
-  lan::Procs procs;
   // Heartbeat 0.5 s (timeout 1.2 s): tank2 sends about twice a second while it drives.
-  auto node = fed::start_node(procs, "fed_sent", "federate.toml", 4.0, {}, {"NPSNET_DIS_TIMEOUT_S=1.2"});
-  net::Session peer(fed::peer_config(node.port));
+  fed::Federate f("fed_sent", "federate.toml", 4.0, {}, {"NPSNET_DIS_TIMEOUT_S=1.2"});
+  const auto& node = f.node;
+  auto& peer = f.peer;
   std::vector<net::EntityStatePdu> tank2;
   auto visit = net::Overloaded{[&](const net::EntityStatePdu& p) {
     if (p.entity_id.site == 1 && p.entity_id.application == 1 && p.entity_id.entity == 2) tank2.push_back(p);
   }};
   fed::poll_until(peer, node.start + 2.5, visit);
   const auto t2 = tank2.empty() ? net::Vec3d{} : tank2.back().location;
-  net::DetonationPdu hit;  // our he_round's type on tank2 (entity 2): it is wrecked and stops
-  hit.firing_entity_id = peer.entity_id(1);
-  hit.target_entity_id = {1, 1, 2};
-  hit.exploding_entity_id = peer.entity_id(100);
-  hit.location = t2;
-  hit.descriptor = {{2, 8, 225, 2, 14, 1, 0}, 1000, 1000, 1, 0};
-  hit.detonation_result = 1;
-  peer.send(hit);
+  // our he_round's type on tank2 (entity 2), an entity impact: it is wrecked and stops
+  peer.send(fed::detonation(peer, 0, fed::kHeRound, 1000, 1000, 1, 1, t2, {1, 1, 2}));
   fed::poll_until(peer, node.start + 4.5, visit);
-  ASSERT_EQ(procs.wait(node.pid, 30.0), 0) << lan::read_text(node.out);
+  ASSERT_TRUE(f.finished());
   bool wrecked = false;
-  for (const auto& d : fed::of_type(lan::read_events(node.events), "damage"))
+  for (const auto& d : fed::of_type(f.events(), "damage"))
     if (d["object"] == "tank2" && d["to_state"] == "wreck") wrecked = true;
   EXPECT_TRUE(wrecked) << "the peer's round stops tank2";
 
@@ -49,7 +42,7 @@ TEST(FederateKinematics, SentStatesAreStampedWithTheirTimeAndFilteredAcceleratio
   double worst_a = 0, worst_x = 0;
   for (const auto& p : tank2) {
     const double T = net::decode_timestamp(p.header.timestamp).seconds_past_hour;
-    const auto l = fed::local(w, p.location);
+    const auto l = fed::local(f.world, p.location);
     const auto& a = p.dead_reckoning.linear_acceleration;
     worst_a = std::max(worst_a, std::sqrt(double(a.x) * a.x + double(a.y) * a.y + double(a.z) * a.z));
     if (T > 0 && T < 2.4) {
@@ -61,30 +54,22 @@ TEST(FederateKinematics, SentStatesAreStampedWithTheirTimeAndFilteredAcceleratio
   EXPECT_LT(worst_x, 0.05) << "a state stamped with another time is off by 1 m at 10 m/s (one 0.1 s tick)";
   EXPECT_LT(worst_a, 20.0) << "stopping in one tick is not sent as 100 m/s^2";
   for (const auto& p : tank2) EXPECT_EQ(p.force_id, 2) << "force = \"opposing\" in the scenario";
-  std::filesystem::remove_all(node.dir);
 }
 
 TEST(FederateKinematics, ReceivedRpbFollowsItsCircle) {
-  const auto w = fed::world_of("federate.toml");
-  const auto& frame = w.terrain.frame();
-  lan::Procs procs;
-  auto node = fed::start_node(procs, "fed_rpb", "federate.toml", 6.0);
-  net::Session peer(fed::peer_config(node.port));
-  net::EntityStatePdu bmp;
-  bmp.entity_id = peer.entity_id(3);
-  bmp.entity_type = {1, 1, 222, 2, 1, 0, 0};
-  bmp.marking = net::make_marking("r3").value();
-  bmp.location = fed::ecef(w, 150, 150);
-  const auto eu = frame.to_dis_euler(npsnet::Vec3(150, 150, 0), 0.0, 0, 0);  // heading north
-  bmp.orientation = {static_cast<float>(eu.x()), static_cast<float>(eu.y()), static_cast<float>(eu.z())};
+  fed::Federate f("fed_rpb", "federate.toml", 6.0);
+  const auto& node = f.node;
+  auto& peer = f.peer;
+  auto bmp = fed::entity_state(peer, 3, {1, 1, 222, 2, 1, 0, 0}, "r3", f.ecef(150, 150));
+  bmp.orientation = fed::orientation(f.world, 150, 150, 0.0);  // heading north
   bmp.linear_velocity = {20, 0, 0};                    // body axes: forward
   bmp.dead_reckoning.algorithm = 7;                    // RPB
   bmp.dead_reckoning.angular_velocity = {0, 0, 0.4f};  // about body z (down): turning right
   fed::sleep_until(node.start + 1.0);
   const double sent = lan::unix_now() - node.start;
   peer.send(bmp);  // one Entity State: the node dead-reckons the rest (timeout 12 s)
-  ASSERT_EQ(procs.wait(node.pid, 30.0), 0) << lan::read_text(node.out);
-  const auto ev = lan::read_events(node.events);
+  ASSERT_TRUE(f.finished());
+  const auto ev = f.events();
 
   const double quarter_s = (3.14159265358979 / 2) / 0.4;
   std::vector<nlohmann::json> met;
@@ -100,7 +85,6 @@ TEST(FederateKinematics, ReceivedRpbFollowsItsCircle) {
   // the circle, about east, towards t1), not (20, 0, 0) read as ECEF axes.
   EXPECT_GT(met[0]["closing_speed_mps"].get<double>(), 12.0) << met[0].dump();
   EXPECT_LT(met[0]["closing_speed_mps"].get<double>(), 20.5) << met[0].dump();
-  std::filesystem::remove_all(node.dir);
 }
 
 // Mass of a foreign entity (issue 10, defect 5/6), through the real path: a peer's heavy
@@ -114,26 +98,15 @@ TEST(FederateKinematics, ReceivedRpbFollowsItsCircle) {
 //    neither tank moved.
 TEST(FederateKinematics, ForeignMassIsItsMappedKindsMass) {
   fed::Federate f("fed_mass", "federate_mass.toml", 3.5);
-  const auto& w = f.world;
-  const auto& frame = w.terrain.frame();
-  auto& node = f.node;
+  const auto& node = f.node;
   auto& peer = f.peer;
-  const net::EntityType heavy{1, 1, 225, 1, 1, 3, 0}, light{1, 1, 225, 6, 1, 0, 0};  // m1a1, hmmwv
-  auto ecef_v = [&](double x, double y, double vx, double vy) {  // a local velocity in ECEF axes
-    const auto a = fed::ecef(w, x, y), b = fed::ecef(w, x + vx, y + vy);
-    return net::Vec3f{static_cast<float>(b.x - a.x), static_cast<float>(b.y - a.y), static_cast<float>(b.z - a.z)};
-  };
+  const net::EntityType heavy = fed::kM1a1, light{1, 1, 225, 6, 1, 0, 0};  // m1a1, hmmwv
   auto vehicle = [&](std::uint16_t n, const char* marking, net::EntityType type, double x, double y, double heading,
                      double speed) {
-    net::EntityStatePdu p;
-    p.entity_id = peer.entity_id(n);
-    p.entity_type = type;
-    p.marking = net::make_marking(marking).value();
-    p.location = fed::ecef(w, x, y);
-    const auto eu = frame.to_dis_euler(npsnet::Vec3(x, y, 0), heading, 0, 0);
-    p.orientation = {static_cast<float>(eu.x()), static_cast<float>(eu.y()), static_cast<float>(eu.z())};
+    auto p = fed::entity_state(peer, n, type, marking, f.ecef(x, y));
+    p.orientation = fed::orientation(f.world, x, y, heading);
     const double h = heading * 3.14159265358979 / 180;
-    p.linear_velocity = ecef_v(x, y, speed * std::sin(h), speed * std::cos(h));
+    p.linear_velocity = fed::ecef_velocity(f.world, x, y, speed * std::sin(h), speed * std::cos(h));
     p.dead_reckoning.algorithm = speed > 0 ? 2 : 1;  // FPW or static
     return p;
   };
@@ -148,7 +121,7 @@ TEST(FederateKinematics, ForeignMassIsItsMappedKindsMass) {
     c.colliding_entity_id = {1, 1, ours};
     c.event_id = {1, 50, ours};
     c.collision_type = 1;  // elastic
-    c.velocity = ecef_v(x, 320, 0, -5);
+    c.velocity = fed::ecef_velocity(f.world, x, 320, 0, -5);
     c.mass = 0;
     return c;
   };

@@ -29,11 +29,10 @@ struct Shot {
 }  // namespace
 
 TEST(FederateMunitions, EachWarheadClassAndResultHasItsEffect) {
-  const auto w = fed::world_of("federate.toml");
-  lan::Procs procs;
-  auto node = fed::start_node(procs, "fed_munitions", "federate.toml", 4.5);
-  net::Session peer(fed::peer_config(node.port));
-  const net::EntityType he_type{2, 8, 225, 2, 14, 1, 0};    // our he_round's type
+  fed::Federate f("fed_munitions", "federate.toml", 4.5);
+  const auto& node = f.node;
+  auto& peer = f.peer;
+  const net::EntityType he_type = fed::kHeRound;
   const net::EntityType smoke_type{2, 9, 225, 2, 5, 4, 0};  // battlefield support, 60 mm: not in any table
   const net::EntityType rifle_type{2, 8, 225, 2, 1, 0, 0};  // a ballistic anti-personnel round
   // t1 (ours) is parked at (200, 200); he_round: blast 30 m (inner third destroys), crater 6 m.
@@ -50,20 +49,13 @@ TEST(FederateMunitions, EachWarheadClassAndResultHasItsEffect) {
   while (next < shots.size() && lan::unix_now() < node.start + 4.0) {
     const Shot& s = shots[next];
     fed::sleep_until(node.start + s.at_s);
-    net::DetonationPdu d;
-    d.firing_entity_id = peer.entity_id(1);
-    d.target_entity_id = s.on_t1 ? net::EntityId{1, 1, 1} : net::EntityId{};
-    d.exploding_entity_id = peer.entity_id(static_cast<std::uint16_t>(100 + next));
-    d.event_id = {1, 50, static_cast<std::uint16_t>(next + 1)};
-    d.location = fed::ecef(w, s.x, s.y, s.agl);
-    d.descriptor = {s.type, s.warhead, s.fuse, s.quantity, 0};
-    d.detonation_result = s.result;
-    peer.send(d);
+    peer.send(fed::detonation(peer, static_cast<std::uint16_t>(next), s.type, s.warhead, s.fuse, s.quantity, s.result,
+                              f.ecef(s.x, s.y, s.agl), s.on_t1 ? net::EntityId{1, 1, 1} : net::EntityId{}));
     ++next;
   }
   ASSERT_EQ(next, shots.size()) << "the peer fell behind its schedule";
-  ASSERT_EQ(procs.wait(node.pid, 30.0), 0) << lan::read_text(node.out);
-  const auto ev = lan::read_events(node.events);
+  ASSERT_TRUE(f.finished());
+  const auto ev = f.events();
 
   const auto dets = fed::of_type(ev, "detonation");
   ASSERT_EQ(dets.size(), shots.size());
@@ -95,7 +87,6 @@ TEST(FederateMunitions, EachWarheadClassAndResultHasItsEffect) {
   ASSERT_EQ(t1_damage.size(), 1u) << "only the airburst's blast damages t1";
   EXPECT_EQ(t1_damage[0]["to_state"], "wreck");
   EXPECT_EQ(t1_damage[0]["t"], airburst_t);
-  std::filesystem::remove_all(node.dir);
 }
 
 // A burst (issue 10, defect 3: quantity), through the real path. A peer's Fire and Detonation
@@ -111,28 +102,20 @@ TEST(FederateMunitions, BurstOfQuantityRoundsAddsEachRoundsBlast) {
   fed::Federate f("fed_burst", "federate.toml", 3.5);
   auto& node = f.node;
   auto& peer = f.peer;
-  const net::EntityType he_type{2, 8, 225, 2, 14, 1, 0};    // our he_round's type
+  const net::EntityType he_type = fed::kHeRound;
   const net::EntityType rifle_type{2, 8, 225, 2, 1, 0, 0};  // a ballistic anti-personnel round
   std::uint16_t event = 0;
   auto fire_and_detonate = [&](net::EntityType type, std::uint16_t warhead, std::uint16_t quantity, double x, double y,
                                std::uint8_t result, net::EntityId target) {  // the rounds leave and land at once
-    ++event;
+    const auto d = fed::detonation(peer, ++event, type, warhead, 1000, quantity, result, f.ecef(x, y, 0.2), target);
     net::FirePdu fire;
-    fire.firing_entity_id = peer.entity_id(1);
+    fire.firing_entity_id = d.firing_entity_id;
     fire.target_entity_id = target;
-    fire.munition_id = peer.entity_id(static_cast<std::uint16_t>(100 + event));
-    fire.event_id = {1, 50, event};
+    fire.munition_id = d.exploding_entity_id;
+    fire.event_id = d.event_id;
     fire.location = f.ecef(20, 20, 2.0);  // the peer's gun, off in a corner
-    fire.descriptor = {type, warhead, 1000, quantity, quantity > 1 ? std::uint16_t(600) : std::uint16_t(0)};
+    fire.descriptor = d.descriptor;
     peer.send(fire);
-    net::DetonationPdu d;
-    d.firing_entity_id = fire.firing_entity_id;
-    d.target_entity_id = target;
-    d.exploding_entity_id = fire.munition_id;
-    d.event_id = fire.event_id;
-    d.location = f.ecef(x, y, 0.2);
-    d.descriptor = fire.descriptor;
-    d.detonation_result = result;
     peer.send(d);
   };
   // tank2 drives east from (40, 360) at 10 m/s: at 1.0 s it is at x = 50.

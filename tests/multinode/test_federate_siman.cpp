@@ -9,10 +9,10 @@
 #include "peer_support.hpp"
 
 TEST(FederateSiman, FreezeResumeRemoveEachAcknowledged) {
-  lan::Procs procs;
   // Heartbeat 0.5 s (timeout 1.2 s): the node would send an Entity State at least every 0.5 s.
-  auto node = fed::start_node(procs, "fed_siman", "federate.toml", 4, {}, {"NPSNET_DIS_TIMEOUT_S=1.2"});
-  net::Session peer(fed::peer_config(node.port));
+  fed::Federate f("fed_siman", "federate.toml", 4, {}, {"NPSNET_DIS_TIMEOUT_S=1.2"});
+  const auto& node = f.node;
+  auto& peer = f.peer;
   const net::EntityId all{net::kAllSites, net::kAllApplications, 0};
   const net::EntityId control = peer.entity_id(0);
 
@@ -56,7 +56,7 @@ TEST(FederateSiman, FreezeResumeRemoveEachAcknowledged) {
   nobody.request_id = 80;
   peer.send(nobody);
   fed::poll_until(peer, node.start + 7.0, visit);
-  ASSERT_EQ(procs.wait(node.pid, 30.0), 0) << lan::read_text(node.out);
+  ASSERT_TRUE(f.finished());
 
   ASSERT_TRUE(acks.count(77) && acks.count(78) && acks.count(79) && acks.count(80)) << "an Acknowledge for every request";
   EXPECT_EQ(acks[77].second.acknowledge_flag, 4);
@@ -73,15 +73,16 @@ TEST(FederateSiman, FreezeResumeRemoveEachAcknowledged) {
     if (h.at > frozen_from && h.at < frozen_to) ++during;
     if (h.at > acks[78].first + 0.05) {
       ++after;
-      if (h.es.entity_id.entity == 2)  // tank2, after the resume: its clock restarted at 20 s
+      if (h.es.entity_id.entity == 2) {  // tank2, after the resume: its clock restarted at 20 s
         EXPECT_GE(net::decode_timestamp(h.es.header.timestamp).seconds_past_hour, 19.9);
+      }
     }
     if (h.es.entity_id.entity == 1 && (h.es.appearance & net::kAppearanceDeactivated) && h.at < 5.0) t1_deactivated = true;
   }
   EXPECT_EQ(during, 0) << "no Entity State while frozen";
   EXPECT_GT(after, 0);
   EXPECT_TRUE(t1_deactivated) << "Remove Entity: t1 leaves with a deactivation Entity State";
-  const auto ev = lan::read_events(node.events);
+  const auto ev = f.events();
   bool removed = false;
   double last_t = 0;
   for (const auto& e : ev) {
@@ -90,5 +91,4 @@ TEST(FederateSiman, FreezeResumeRemoveEachAcknowledged) {
   }
   EXPECT_TRUE(removed);
   EXPECT_GE(last_t, 20.0) << "events after the resume carry the resumed scenario time";
-  std::filesystem::remove_all(node.dir);
 }

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
-#include <cstring>
 #include <map>
 
 #include "peer_support.hpp"
@@ -19,33 +18,22 @@ size_t count_of(const std::string& text, const std::string& what) {
 }  // namespace
 
 TEST(FederateSummary, Usr1AndEndOfRunListRemoteEntities) {
-  const auto w = fed::world_of("federate.toml");
-  lan::Procs procs;
-  auto node = fed::start_node(procs, "fed_summary", "federate.toml", 3.0);
-  net::Session peer(fed::peer_config(node.port));
-  net::EntityStatePdu r1;
-  r1.entity_id = peer.entity_id(1);
-  r1.entity_type = {1, 1, 225, 1, 1, 3, 0};  // m1a1
-  const char tank[] = {'T', static_cast<char>(0xC4), 'N', 'K'};
-  std::memcpy(r1.marking.characters.data(), tank, sizeof tank);
-  r1.location = fed::ecef(w, 300, 300);
-  r1.dead_reckoning.algorithm = 1;
+  fed::Federate f("fed_summary", "federate.toml", 3.0);
+  const auto& node = f.node;
+  auto& peer = f.peer;
+  auto r1 = fed::entity_state(peer, 1, fed::kM1a1, "", f.ecef(300, 300));
+  fed::set_marking_bytes(r1, {'T', 0xC4, 'N', 'K'});  // Latin-1
   r1.appearance = 1u << 3;  // slight damage
-  auto r2 = r1;
-  r2.entity_id = peer.entity_id(2);
-  r2.entity_type = {1, 2, 225, 1, 9, 9, 0};  // an aircraft no kind has: generic_air
-  r2.marking = {};
-  const char ctl[] = {'a', 0x01, 'b'};
-  std::memcpy(r2.marking.characters.data(), ctl, sizeof ctl);
-  r2.location = fed::ecef(w, 100, 300, 500);
-  r2.appearance = 0;
+  // an aircraft no kind has: generic_air
+  auto r2 = fed::entity_state(peer, 2, {1, 2, 225, 1, 9, 9, 0}, "", f.ecef(100, 300, 500));
+  fed::set_marking_bytes(r2, {'a', 0x01, 'b'});
   fed::sleep_until(node.start + 0.3);
   peer.send(r1), peer.send(r2);
   fed::sleep_until(node.start + 1.5);
   ASSERT_EQ(::kill(node.pid, SIGUSR1), 0);
   fed::sleep_until(node.start + 2.0);
   peer.send(r1);
-  ASSERT_EQ(procs.wait(node.pid, 30.0), 0) << lan::read_text(node.out);
+  ASSERT_TRUE(f.finished());
   const std::string out = lan::read_text(node.out);
   EXPECT_EQ(count_of(out, "remote 1:50:1 \"T\xC3\x84NK\" type 1:1:225:1:1:3:0 (m1a1) owner site 1 app 50 last update "), 2u)
       << "once on SIGUSR1, once at the end:\n" << out;
@@ -53,7 +41,6 @@ TEST(FederateSummary, Usr1AndEndOfRunListRemoteEntities) {
   EXPECT_EQ(count_of(out, "remote 1:50:2 "), 2u) << out;
   EXPECT_EQ(out.find('\x01'), std::string::npos) << "no control character reaches the terminal";
   EXPECT_NE(out.find("type 1:2:225:1:9:9:0 (generic_air)"), std::string::npos) << out;
-  std::filesystem::remove_all(node.dir);
 }
 
 // Every remote entity's damage changes and departures are logged (issue 10, defect 7), also for
@@ -70,20 +57,12 @@ TEST(FederateSummary, EveryRemoteEntitysDamageAndDepartureIsLogged) {
   fed::Federate f("fed_departures", "federate.toml", 4.0, {}, {"NPSNET_DIS_TIMEOUT_S=1.2"});
   auto& node = f.node;
   auto& peer = f.peer;
-  auto es = [&](std::uint16_t n, const char* marking, net::EntityType type, double x, double y) {
-    net::EntityStatePdu p;
-    p.entity_id = peer.entity_id(n);
-    p.entity_type = type;
-    p.marking = net::make_marking(marking).value();
-    p.location = f.ecef(x, y);
-    p.dead_reckoning.algorithm = 1;
-    return p;
-  };
-  auto inf1 = es(1, "inf1", {3, 1, 225, 1, 0, 0, 0}, 100, 100);
-  auto inf2 = es(2, "inf2", {3, 1, 225, 1, 0, 0, 0}, 110, 100);
-  auto r1 = es(3, "r1", {1, 1, 225, 1, 1, 3, 0}, 300, 300);
-  auto bldg = es(4, "bldg", {5, 1, 225, 3, 1, 0, 0}, 250, 250);
-  auto j2 = es(5, "j2", {1, 1, 222, 6, 1, 0, 0}, 320, 300);
+  const net::EntityType soldier{3, 1, 225, 1, 0, 0, 0};
+  auto inf1 = fed::entity_state(peer, 1, soldier, "inf1", f.ecef(100, 100));
+  const auto inf2 = fed::entity_state(peer, 2, soldier, "inf2", f.ecef(110, 100));
+  const auto r1 = fed::entity_state(peer, 3, fed::kM1a1, "r1", f.ecef(300, 300));
+  const auto bldg = fed::entity_state(peer, 4, {5, 1, 225, 3, 1, 0, 0}, "bldg", f.ecef(250, 250));
+  const auto j2 = fed::entity_state(peer, 5, {1, 1, 222, 6, 1, 0, 0}, "j2", f.ecef(320, 300));
   net::EntityStateUpdatePdu r1u;
   r1u.entity_id = r1.entity_id;
   r1u.location = r1.location;
