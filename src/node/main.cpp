@@ -70,7 +70,7 @@ Exit codes: 0 ok, 2 bad input (nothing written), 1 failure while running.)");
   check->add_option("FILE", files, "files to check (a .pcap/.pcapng capture: PDUs by type, malformed ones)")->required();
   run->footer(R"(Examples:
   npsnet run --seconds 20 --snapshots out/ --snapshot-every 5
-  npsnet run --scenario scenarios/fort-hunter-liggett.toml --no-render --events fhl.jsonl
+  npsnet run --scenario scenarios/fhl/fhl.toml --no-render --events fhl.jsonl
   npsnet run --max-snapshots 50 --max-snapshots-per-minute 20    bound the PNGs of a dense world)");
   check->footer(R"(Examples:
   npsnet check scenarios/default.toml             problems as FILE:LINE: field: message, or a world summary

@@ -54,8 +54,9 @@ std::string world_summary(const world::Scenario& s, const world::World& w, const
     wet += h < w.water_level_m;
     lo = std::min(lo, h), hi = std::max(hi, h);
   }
-  std::snprintf(b, sizeof b, "  heights: %.1f to %.1f m; water (below %s): %.1f %% of the posts\n", lo, hi,
-                w.water_level_m < -1e8 ? "no water level" : (std::to_string(w.water_level_m) + " m").c_str(),
+  char level[64] = "no water level";
+  if (w.water_level_m >= -1e8) std::snprintf(level, sizeof level, "%.2f m", w.water_level_m);
+  std::snprintf(b, sizeof b, "  heights: %.1f to %.1f m; water (below %s): %.2f %% of the posts\n", lo, hi, level,
                 100.0 * static_cast<double>(wet) / static_cast<double>(std::max<size_t>(1, t.posts().size())));
   out += b;
   std::map<std::string, int> kinds;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "support/gdal_read.hpp"
 #include "world/error.hpp"
 #include "world/terrain.hpp"
 
@@ -268,21 +269,11 @@ TEST(Terrain, LoadsGeoTiffInUtmZone) {
           float(300.0 + 150.0 * std::max(0.0, 1.0 - std::hypot(e - pe, n - pn) / 1500.0));
     }
   write_geotiff(p, cols, rows, gt, 32610, img);
-  // The peak's geodetic position, through PROJ.
-  OGRSpatialReferenceH utm = OSRNewSpatialReference(nullptr), wgs = OSRNewSpatialReference(nullptr);
-  OSRImportFromEPSG(utm, 32610);
-  OSRImportFromEPSG(wgs, 4326);
-  OSRSetAxisMappingStrategy(utm, OAMS_TRADITIONAL_GIS_ORDER);
-  OSRSetAxisMappingStrategy(wgs, OAMS_TRADITIONAL_GIS_ORDER);
-  OGRCoordinateTransformationH ct = OCTNewCoordinateTransformation(utm, wgs);
-  // The peak, the centre, and the raster's four outer corners.
+  // The peak, the centre, and the raster's four outer corners, through PROJ.
   const double e1 = e0 + cols * px, n_bot = n_top - rows * px;
   double xs[6] = {pe, e0 + cols * px / 2, e0, e1, e0, e1};
   double ys[6] = {pn, n_top - rows * px / 2, n_bot, n_bot, n_top, n_top};
-  ASSERT_TRUE(OCTTransform(ct, 6, xs, ys, nullptr));
-  OCTDestroyCoordinateTransformation(ct);
-  OSRDestroySpatialReference(utm);
-  OSRDestroySpatialReference(wgs);
+  ASSERT_TRUE(test::transform_epsg(32610, 4326, xs, ys, 6));
   const geo::Geodetic peak{ys[0], xs[0], 0}, centre{ys[1], xs[1], 0};
   std::vector<geo::Geodetic> corners;
   for (int k = 2; k < 6; ++k) corners.push_back({ys[k], xs[k], 0});
