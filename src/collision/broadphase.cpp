@@ -14,7 +14,8 @@ inline uint32_t hash_cell(int32_t x, int32_t y, uint32_t mask) {
 }
 }  // namespace
 
-void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint32_t, uint32_t>>& out) {
+void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint32_t, uint32_t>>& out,
+                       core::Jobs* jobs) {
   out.clear();
   const uint32_t n = static_cast<uint32_t>(boxes.size());
   large_.clear();
@@ -75,28 +76,41 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
   start_[0] = 0;
   assert(start_[nb] == entries_.size());
   // Pairs inside each bucket: same cell, reported in the first cell the two boxes share.
-  for (uint32_t h = 0; h < nb; ++h) {
-    const uint32_t e0 = start_[h], e1 = start_[h + 1];
-    if (e1 - e0 < 2) continue;
-    for (uint32_t a = e0; a < e1; ++a) {
-      const Entry& ea = entries_[a];
-      for (uint32_t b = a + 1; b < e1; ++b) {
-        const Entry& eb = entries_[b];
-        // All four compares, no early exit: in a crowded bucket most pairs fail on one of them
-        // at random, and a branch per compare mispredicts.
-        const bool apart = (ea.lox > eb.hix) | (eb.lox > ea.hix) | (ea.loy > eb.hiy) | (eb.loy > ea.hiy);
-        if (apart) continue;
-        if (ea.cx != eb.cx || ea.cy != eb.cy) continue;  // another cell in this bucket
-        // Reported only in the first cell the two boxes share.
-        if (std::max(ifloor(ea.lox * inv), ifloor(eb.lox * inv)) != ea.cx ||
-            std::max(ifloor(ea.loy * inv), ifloor(eb.loy * inv)) != ea.cy)
-          continue;
-        const Box& ba = boxes[ea.id];
-        const Box& bb = boxes[eb.id];
-        if (ba.lo[2] > bb.hi[2] || bb.lo[2] > ba.hi[2]) continue;
-        out.emplace_back(std::min(ea.id, eb.id), std::max(ea.id, eb.id));
+  // Ranges of buckets, each into its own buffer (chunk_out_), concatenated in range order.
+  const int k = jobs ? jobs->chunks(nb, 4096) : 1;
+  if (chunk_out_.size() < static_cast<size_t>(k)) chunk_out_.resize(k);
+  auto range = [&](int c, size_t h0, size_t h1) {
+    auto& o = k == 1 ? out : chunk_out_[c];
+    o.clear();
+    for (uint32_t h = static_cast<uint32_t>(h0); h < h1; ++h) {
+      const uint32_t e0 = start_[h], e1 = start_[h + 1];
+      if (e1 - e0 < 2) continue;
+      for (uint32_t a = e0; a < e1; ++a) {
+        const Entry& ea = entries_[a];
+        for (uint32_t b = a + 1; b < e1; ++b) {
+          const Entry& eb = entries_[b];
+          // All four compares, no early exit: in a crowded bucket most pairs fail on one of them
+          // at random, and a branch per compare mispredicts.
+          const bool apart = (ea.lox > eb.hix) | (eb.lox > ea.hix) | (ea.loy > eb.hiy) | (eb.loy > ea.hiy);
+          if (apart) continue;
+          if (ea.cx != eb.cx || ea.cy != eb.cy) continue;  // another cell in this bucket
+          // Reported only in the first cell the two boxes share.
+          if (std::max(ifloor(ea.lox * inv), ifloor(eb.lox * inv)) != ea.cx ||
+              std::max(ifloor(ea.loy * inv), ifloor(eb.loy * inv)) != ea.cy)
+            continue;
+          const Box& ba = boxes[ea.id];
+          const Box& bb = boxes[eb.id];
+          if (ba.lo[2] > bb.hi[2] || bb.lo[2] > ba.hi[2]) continue;
+          o.emplace_back(std::min(ea.id, eb.id), std::max(ea.id, eb.id));
+        }
       }
     }
+  };
+  if (k == 1) {
+    range(0, 0, nb);
+  } else {
+    jobs->for_chunks(nb, 4096, range);
+    for (int c = 0; c < k; ++c) out.insert(out.end(), chunk_out_[c].begin(), chunk_out_[c].end());
   }
   // Large boxes against every box (each pair once).
   for (uint32_t l : large_) {

@@ -9,6 +9,8 @@
 //    Linear in N for bounded density, also where bodies crowd (the cell shrinks to the bodies).
 //  Fixed objects are the world's one grid (world/fixed_grid.hpp), not indexed again here.
 //  brute_pairs: the plain O(N^2) reference the tests compare MovingGrid with.
+//  Threading: given a core::Jobs, the pair search runs per range of buckets, each range into its
+//    own buffer, concatenated in range order: the same pairs in the same order for any thread count.
 // Units: metres, local frame; boxes in float (a 50 km map keeps ~4 mm resolution).
 #pragma once
 #include <cmath>
@@ -16,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/jobs.hpp"
 #include "core/math.hpp"
 
 namespace npsnet::collision {
@@ -41,7 +44,8 @@ class MovingGrid {
  public:
   // Appends to `out` (cleared first) every pair (i, j), i < j, whose boxes overlap, each once,
   // in an order that depends only on the input.
-  void pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint32_t, uint32_t>>& out);
+  void pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint32_t, uint32_t>>& out,
+             core::Jobs* jobs = nullptr);
   double cell_m() const { return cell_; }
 
  private:
@@ -56,6 +60,7 @@ class MovingGrid {
   std::vector<Entry> entries_;        // by bucket
   std::vector<uint32_t> large_;
   std::vector<uint8_t> is_large_;
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> chunk_out_;  // per range of buckets
 };
 
 void brute_pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint32_t, uint32_t>>& out);

@@ -24,8 +24,12 @@
 // once warm). Positions in the local frame, metres; speeds m/s; times s unless a "fraction".
 // Non-finite positions or velocities are rejected with std::invalid_argument naming the entity.
 // Threading: detect and respond read a const World; a Detector (its buffers, the contact episodes
-// of last tick) belongs to one thread, which may fan the per-entity work out to workers that
-// write only their own slots. The world is changed only by world::apply of respond's Changes.
+// of last tick) belongs to one thread. Given a core::Jobs (set_jobs), detect fans out to its
+// workers: the per-entity sweeps (each writes its own slots), the fixed-object tests per range of
+// entities, the moving grid's pair search per range of buckets and the narrow phase per range of
+// pairs, each range into its own lane (contacts, pair keys, stats, shape scratch); the lanes are
+// merged in range order, so contacts, events and stats are the same bytes for any thread count.
+// The world is changed only by world::apply of respond's Changes.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -33,10 +37,12 @@
 #include <vector>
 
 #include "collision/broadphase.hpp"
+#include "collision/id_rank.hpp"
 #include "collision/shapes.hpp"
 #include "collision/sweep.hpp"
 #include "collision/trace.hpp"
 #include "core/constants.hpp"
+#include "core/jobs.hpp"
 #include "world/changes.hpp"
 #include "world/world.hpp"
 
@@ -89,6 +95,9 @@ class Detector {
   void detect(const world::World& w, std::vector<Contact>& out);
   const DetectStats& stats() const { return stats_; }
   const Options& options() const { return opt_; }
+  // Worker threads for detect (continuous method); nullptr (the default) = this thread only.
+  // The pool must outlive the detector's use of it.
+  void set_jobs(core::Jobs* jobs) { jobs_ = jobs; }
   // A new tick length (s; positive and finite, else std::invalid_argument).
   void set_dt(double dt_s);
   // One pair of entities by this detector's method and tier, outside the episode bookkeeping
@@ -99,16 +108,29 @@ class Detector {
   void detect_thesis(const world::World& w);
   void detect_continuous(const world::World& w);
   void prepare_shapes(const world::World& w);
-  // rank_[e]: entity e's place in the order of ids (fixed_rank_ for fixed objects): contacts and
+  // rank_.ranks()[e]: entity e's place in the order of ids (fixed_rank_ for fixed objects): contacts and
   // pairs are ordered by these integers, not by storage index nor by comparing strings.
   void rank_ids(const world::World& w);
+  // One thread's share of a detection: merged into candidates_, touching_, stats_ in range order.
+  struct Lane {
+    std::vector<uint64_t> touching;
+    std::vector<Contact> candidates;
+    DetectStats stats;
+    ShapeScratch scratch;
+  };
+  Lane& lane(int c);
+  void merge_lanes(int k);
+  // The fixed objects near swept entity i (order_[i]); the moving pair pairs_[p].
+  void fixed_contacts(const world::World& w, size_t i, Lane& L);
+  void pair_contact(const world::World& w, size_t p, Lane& L);
   // `continuing`: the pair touched last tick; its episode goes on while its bound spheres meet.
   bool moving_pair(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa, double rba,
-                   const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, bool continuing, Contact& k);
+                   const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, bool continuing, Contact& k, Lane& L);
   // Narrow phase of one moving pair (entities a, b) beyond the sweep: true with a contact.
   // Sweeps the posed shapes from the first touch of the bounding spheres ([t_in, t_out]) up to
   // `tier`, cheapest first; true with the time, point and normal of the first contact.
-  bool narrow(const world::World& w, int a, int b, bool b_fixed, Tier tier, double t_in, double t_out, Contact& k);
+  bool narrow(const world::World& w, int a, int b, bool b_fixed, Tier tier, double t_in, double t_out, Contact& k,
+              Lane& L);
 
   Options opt_;
   std::vector<uint32_t> order_;         // active entities sorted by x (L1 sweep)
@@ -124,10 +146,11 @@ class Detector {
   MovingGrid moving_;
   std::vector<float> fixed_x_, fixed_y_, fixed_r_;  // fixed objects' test circles (m)
   size_t fixed_indexed_ = static_cast<size_t>(-1);
-  std::vector<uint32_t> rank_, fixed_rank_;
+  IdRank rank_, fixed_rank_;
   int64_t ranked_created_ = -1;
   std::vector<Shape> shapes_;           // per model index
-  ShapeScratch scratch_;
+  core::Jobs* jobs_ = nullptr;
+  std::vector<Lane> lanes_;
 };
 
 // ---- geometry (thesis Figures 4-6) ------------------------------------------------------------

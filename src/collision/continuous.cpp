@@ -43,7 +43,7 @@ void Detector::prepare_shapes(const world::World& w) {
 }
 
 bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier tier, double t_in, double t_out,
-                      Contact& k) {
+                      Contact& k, Lane& L) {
   const auto& ents = w.ents;
   const double dt = opt_.dt_s;
   const Shape& sa = shapes_[w.kinds[ents.kind[a]].models[ents.state[a]]];
@@ -69,8 +69,8 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
     pb.rot = rb, pb.pos = pb_end - vb * (1 - t);
   };
   const double rel = (va - vb).norm();
-  const Trace toi = cast_shapes(sa, Pose{ra, pa_end}, va, sb, Pose{rb, pb_end}, vb, tier, t_in, t_out, scratch_,
-                                stats_.tier_decided);
+  const Trace toi = cast_shapes(sa, Pose{ra, pa_end}, va, sb, Pose{rb, pb_end}, vb, tier, t_in, t_out, L.scratch,
+                                L.stats.tier_decided);
   if (!toi.hit) return false;
   const double hi = toi.fraction;
   Pose pa, pb;
@@ -86,7 +86,7 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
     const double t = std::min(1.0, hi + i * 0.002 / std::max(rel, 1e-9));
     Pose qa, qb;
     poses(t, qa, qb);
-    met = mesh_overlap(sa, qa, sb, qb, scratch_, &p);
+    met = mesh_overlap(sa, qa, sb, qb, L.scratch, &p);
   }
   if (met) {
     k.point = p;
@@ -111,29 +111,29 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
 
 bool Detector::moving_pair(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa,
                            double rba, const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, bool continuing,
-                           Contact& k) {
+                           Contact& k, Lane& L) {
   const auto& ents = w.ents;
   const bool mun = w.is_munition(a) || w.is_munition(b);
   const Tier tier = mun ? Tier::Sphere
                         : opt_.tier != Tier::Auto ? opt_.tier
                                                   : std::min(top_tier(w.kinds[ents.kind[a]]), top_tier(w.kinds[ents.kind[b]]));
   const bool sphere = tier == Tier::Sphere;
-  ++stats_.sweep_pairs;
+  ++L.stats.sweep_pairs;
   const Trace h = sphere_sweep(c0a, c1a, sphere ? rsa : rba, c0b, c1b, sphere ? rsb : rbb);
   if (!h.hit) {
-    ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];
+    ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
     return false;
   }
-  ++stats_.sweep_hits;
+  ++L.stats.sweep_hits;
   k.a = a, k.b = b, k.b_fixed = false, k.dt_s = opt_.dt_s;
   if (sphere || continuing) {  // a continuing episode needs no more than its bound
-    ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];
+    ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
     static_cast<Trace&>(k) = h;
     k.method = method_of(Tier::Sphere, false);
     if (mun) k.method = "continuous-munition";
     return true;
   }
-  return narrow(w, a, b, false, tier, h.fraction, h.exit_fraction, k);
+  return narrow(w, a, b, false, tier, h.fraction, h.exit_fraction, k, L);
 }
 
 bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
@@ -163,22 +163,111 @@ bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
     const Shape& sh = shapes_[w.kinds[ents.kind[e]].models[ents.state[e]]];
     rb[s] = top == Tier::Sphere ? rs[s] : std::max(rs[s], sh.bound_radius * 1.0001 + 1e-3);
   }
-  return moving_pair(w, a, b, c0[0], c1[0], rs[0], rb[0], c0[1], c1[1], rs[1], rb[1], false, k);
+  Lane& L = lane(0);
+  const bool hit = moving_pair(w, a, b, c0[0], c1[0], rs[0], rb[0], c0[1], c1[1], rs[1], rb[1], false, k, L);
+  merge_lanes(1);
+  return hit;
 }
 
 void Detector::rank_ids(const world::World& w) {
-  auto rank = [](const std::vector<std::string>& ids, std::vector<uint32_t>& out) {
-    std::vector<uint32_t> by(ids.size());
-    for (uint32_t i = 0; i < by.size(); ++i) by[i] = i;
-    std::sort(by.begin(), by.end(), [&](uint32_t x, uint32_t y) { return ids[x] != ids[y] ? ids[x] < ids[y] : x < y; });
-    out.resize(ids.size());
-    for (uint32_t r = 0; r < by.size(); ++r) out[by[r]] = r;
-  };
-  if (ranked_created_ != w.ents.created || rank_.size() != w.ents.size()) {  // ids changed: made or reclaimed
-    rank(w.ents.id, rank_);
+  if (ranked_created_ != w.ents.created || rank_.ranks().size() != w.ents.size()) {  // ids made or reclaimed
+    rank_.update(w.ents.id);
     ranked_created_ = w.ents.created;
   }
-  if (fixed_rank_.size() != w.fixed.size()) rank(w.fixed.id, fixed_rank_);
+  if (fixed_rank_.ranks().size() != w.fixed.size()) fixed_rank_.update(w.fixed.id);
+}
+
+Detector::Lane& Detector::lane(int c) {
+  if (static_cast<int>(lanes_.size()) <= c) lanes_.resize(c + 1);
+  return lanes_[c];
+}
+
+void Detector::merge_lanes(int k) {
+  for (int c = 0; c < k; ++c) {
+    Lane& L = lanes_[c];
+    candidates_.insert(candidates_.end(), L.candidates.begin(), L.candidates.end());
+    touching_.insert(touching_.end(), L.touching.begin(), L.touching.end());
+    L.candidates.clear(), L.touching.clear();
+    DetectStats& s = L.stats;
+    stats_.fixed_tests += s.fixed_tests, stats_.l1_pairs += s.l1_pairs, stats_.l2_pairs += s.l2_pairs;
+    stats_.l3_tests += s.l3_tests, stats_.l3_rejects += s.l3_rejects, stats_.contacts += s.contacts;
+    for (int t = 0; t < 5; ++t) stats_.tier_decided[t] += s.tier_decided[t];
+    stats_.sweep_pairs += s.sweep_pairs, stats_.sweep_hits += s.sweep_hits;
+    s = DetectStats{};
+  }
+}
+
+namespace {
+// Items per chunk below which a stage stays on one thread (waking a worker costs ~10-50 us).
+constexpr size_t kEntityGrain = 2048, kPairGrain = 256;
+// Runs fn(chunk, begin, end) over [0, count), on the pool when there is one.
+template <class F>
+int chunked(core::Jobs* jobs, size_t count, size_t grain, F&& fn) {
+  if (!jobs) {
+    fn(0, size_t{0}, count);
+    return 1;
+  }
+  const int k = jobs->chunks(count, grain);
+  jobs->for_chunks(count, grain, fn);
+  return k;
+}
+}  // namespace
+
+void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
+  const auto& ents = w.ents;
+  const double dt = opt_.dt_s;
+  const int e = static_cast<int>(order_[i]);
+  const world::Kind& ke = w.kinds[ents.kind[e]];
+  const Box& b = boxes_[i];
+  w.grid.query(b.lo[0], b.lo[1], b.hi[0], b.hi[1], [&](int o, float) {
+    const float x = fixed_x_[o], y = fixed_y_[o], r = fixed_r_[o];
+    if (x + r < b.lo[0] || x - r > b.hi[0] || y + r < b.lo[1] || y - r > b.hi[1]) return;
+    ++L.stats.fixed_tests;
+    const world::Kind& ko = w.kinds[w.fixed.kind[o]];
+    const Tier tier = opt_.tier != Tier::Auto ? opt_.tier : std::min(top_tier(ke), top_tier(ko));
+    const Vec3 fc = world::fixed_centre(w, o);  // live: craters re-seat objects
+    const double rs = world::fixed_radius(w, o);
+    const bool sphere = tier == Tier::Sphere || w.is_munition(e);
+    const Trace h = sphere_sweep(c0_[i], c1_[i], sphere ? r_sphere_[i] : r_bound_[i], fc, fc,
+                                 sphere ? rs : std::max<double>(rs, r));
+    ++L.stats.sweep_pairs;
+    if (!h.hit) {
+      ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
+      return;
+    }
+    ++L.stats.sweep_hits;
+    Contact k;
+    k.a = e, k.b = static_cast<int>(o), k.b_fixed = true, k.dt_s = dt;
+    const bool continuing = !sphere && std::binary_search(previous_.begin(), previous_.end(),
+                                                          contact_key(e, static_cast<int>(o), true));
+    if (sphere || continuing) {
+      ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
+      static_cast<Trace&>(k) = h;
+      k.method = method_of(Tier::Sphere, true);
+    } else if (!narrow(w, e, static_cast<int>(o), true, tier, h.fraction, h.exit_fraction, k, L)) {
+      return;
+    }
+    L.touching.push_back(contact_key(e, static_cast<int>(o), true));
+    L.candidates.push_back(k);
+  });
+}
+
+void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
+  const auto& ents = w.ents;
+  const auto [i, j] = pairs_[p];
+  int a = static_cast<int>(order_[i]), b = static_cast<int>(order_[j]);
+  size_t ia = i, ib = j;
+  if (ents.owner[a] == b || ents.owner[b] == a) return;  // a round never meets its shooter
+  if (w.is_munition(a) && w.is_munition(b)) return;
+  // Canonical order by id rank, so that the answer does not depend on where entities are stored.
+  if (rank_.ranks()[b] < rank_.ranks()[a]) std::swap(a, b), std::swap(ia, ib);
+  Contact k;
+  const bool continuing = std::binary_search(previous_.begin(), previous_.end(), contact_key(a, b, false));
+  if (!moving_pair(w, a, b, c0_[ia], c1_[ia], r_sphere_[ia], r_bound_[ia], c0_[ib], c1_[ib], r_sphere_[ib],
+                   r_bound_[ib], continuing, k, L))
+    return;
+  L.touching.push_back(contact_key(a, b, false));
+  L.candidates.push_back(k);
 }
 
 void Detector::detect_continuous(const world::World& w) {
@@ -196,18 +285,20 @@ void Detector::detect_continuous(const world::World& w) {
   }
   const size_t m = order_.size();
   c0_.resize(m), c1_.resize(m), r_sphere_.resize(m), r_bound_.resize(m), boxes_.resize(m);
-  for (size_t i = 0; i < m; ++i) {
-    const int e = static_cast<int>(order_[i]);
-    c1_[i] = world::entity_centre(w, e);
-    c0_[i] = c1_[i] - ents.vel[e] * dt;
-    if (!finite(c0_[i]))
-      throw std::invalid_argument("collision: entity '" + ents.id[e] + "': velocity * dt overflows");
-    r_sphere_[i] = static_cast<float>(world::entity_radius(w, e));
-    const Tier top = opt_.tier != Tier::Auto ? opt_.tier : top_tier(w.kinds[ents.kind[e]]);
-    const Shape& s = shapes_[w.kinds[ents.kind[e]].models[ents.state[e]]];
-    r_bound_[i] = top == Tier::Sphere ? r_sphere_[i] : std::max(r_sphere_[i], static_cast<float>(s.bound_radius * 1.0001 + 1e-3));
-    boxes_[i] = swept_box(c0_[i], c1_[i], r_bound_[i]);
-  }
+  chunked(jobs_, m, kEntityGrain, [&](int, size_t i0, size_t i1) {
+    for (size_t i = i0; i < i1; ++i) {
+      const int e = static_cast<int>(order_[i]);
+      c1_[i] = world::entity_centre(w, e);
+      c0_[i] = c1_[i] - ents.vel[e] * dt;
+      if (!finite(c0_[i]))
+        throw std::invalid_argument("collision: entity '" + ents.id[e] + "': velocity * dt overflows");
+      r_sphere_[i] = static_cast<float>(world::entity_radius(w, e));
+      const Tier top = opt_.tier != Tier::Auto ? opt_.tier : top_tier(w.kinds[ents.kind[e]]);
+      const Shape& s = shapes_[w.kinds[ents.kind[e]].models[ents.state[e]]];
+      r_bound_[i] = top == Tier::Sphere ? r_sphere_[i] : std::max(r_sphere_[i], static_cast<float>(s.bound_radius * 1.0001 + 1e-3));
+      boxes_[i] = swept_box(c0_[i], c1_[i], r_bound_[i]);
+    }
+  });
 
   // Fixed objects: the world's grid (world/fixed_grid.hpp) lists each by its reach; each is
   // tested here by its sphere (or its models' bound, when a tier above the sphere may be asked),
@@ -227,67 +318,26 @@ void Detector::detect_continuous(const world::World& w) {
     }
     fixed_indexed_ = w.fixed.size();
   }
-  for (size_t i = 0; i < m; ++i) {
-    const int e = static_cast<int>(order_[i]);
-    const world::Kind& ke = w.kinds[ents.kind[e]];
-    const Box& b = boxes_[i];
-    w.grid.query(b.lo[0], b.lo[1], b.hi[0], b.hi[1], [&](int o, float) {
-      const float x = fixed_x_[o], y = fixed_y_[o], r = fixed_r_[o];
-      if (x + r < b.lo[0] || x - r > b.hi[0] || y + r < b.lo[1] || y - r > b.hi[1]) return;
-      ++stats_.fixed_tests;
-      const world::Kind& ko = w.kinds[w.fixed.kind[o]];
-      const Tier tier = opt_.tier != Tier::Auto ? opt_.tier : std::min(top_tier(ke), top_tier(ko));
-      const Vec3 fc = world::fixed_centre(w, o);  // live: craters re-seat objects
-      const double rs = world::fixed_radius(w, o);
-      const bool sphere = tier == Tier::Sphere || w.is_munition(e);
-      const Trace h = sphere_sweep(c0_[i], c1_[i], sphere ? r_sphere_[i] : r_bound_[i], fc, fc,
-                                      sphere ? rs : std::max<double>(rs, r));
-      ++stats_.sweep_pairs;
-      if (!h.hit) {
-        ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];
-        return;
-      }
-      ++stats_.sweep_hits;
-      Contact k;
-      k.a = e, k.b = static_cast<int>(o), k.b_fixed = true, k.dt_s = dt;
-      const bool continuing = !sphere && std::binary_search(previous_.begin(), previous_.end(),
-                                                            contact_key(e, static_cast<int>(o), true));
-      if (sphere || continuing) {
-        ++stats_.tier_decided[static_cast<int>(Tier::Sphere)];
-        static_cast<Trace&>(k) = h;
-        k.method = method_of(Tier::Sphere, true);
-      } else if (!narrow(w, e, static_cast<int>(o), true, tier, h.fraction, h.exit_fraction, k)) {
-        return;
-      }
-      touching_.push_back(contact_key(e, static_cast<int>(o), true));
-      candidates_.push_back(k);
-    });
-  }
+  if (jobs_) lane(jobs_->threads() - 1);
+  else lane(0);
+  merge_lanes(chunked(jobs_, m, kEntityGrain, [&](int c, size_t i0, size_t i1) {
+    for (size_t i = i0; i < i1; ++i) fixed_contacts(w, i, lanes_[c]);
+  }));
 
   // Moving pairs: hashed grid on the swept boxes, then the analytic sweep, then the tiers.
-  moving_.pairs(boxes_, pairs_);
-  for (const auto& [i, j] : pairs_) {
-    int a = static_cast<int>(order_[i]), b = static_cast<int>(order_[j]);
-    size_t ia = i, ib = j;
-    if (ents.owner[a] == b || ents.owner[b] == a) continue;  // a round never meets its shooter
-    if (w.is_munition(a) && w.is_munition(b)) continue;
-    // Canonical order by id rank, so that the answer does not depend on where entities are stored.
-    if (rank_[b] < rank_[a]) std::swap(a, b), std::swap(ia, ib);
-    Contact k;
-    const bool continuing = std::binary_search(previous_.begin(), previous_.end(), contact_key(a, b, false));
-    if (!moving_pair(w, a, b, c0_[ia], c1_[ia], r_sphere_[ia], r_bound_[ia], c0_[ib], c1_[ib], r_sphere_[ib],
-                     r_bound_[ib], continuing, k))
-      continue;
-    touching_.push_back(contact_key(a, b, false));
-    candidates_.push_back(k);
-  }
+  moving_.pairs(boxes_, pairs_, jobs_);
+  merge_lanes(chunked(jobs_, pairs_.size(), kPairGrain, [&](int c, size_t p0, size_t p1) {
+    for (size_t p = p0; p < p1; ++p) pair_contact(w, p, lanes_[c]);
+  }));
 
   // Deterministic order: time of impact, then the id ranks (not the storage order).
+  const auto& rank = rank_.ranks();
+  const auto& fixed_rank = fixed_rank_.ranks();
   std::sort(candidates_.begin(), candidates_.end(), [&](const Contact& x, const Contact& y) {
     if (x.fraction != y.fraction) return x.fraction < y.fraction;
-    if (rank_[x.a] != rank_[y.a]) return rank_[x.a] < rank_[y.a];
+    if (rank[x.a] != rank[y.a]) return rank[x.a] < rank[y.a];
     if (x.b_fixed != y.b_fixed) return x.b_fixed < y.b_fixed;
-    return x.b_fixed ? fixed_rank_[x.b] < fixed_rank_[y.b] : rank_[x.b] < rank_[y.b];
+    return x.b_fixed ? fixed_rank[x.b] < fixed_rank[y.b] : rank[x.b] < rank[y.b];
   });
 }
 

@@ -254,7 +254,10 @@ double LocalFrame::convergence_deg(const Geodetic& g) const {
 
 Vec3 LocalFrame::to_dis_euler(const Vec3& local_pos, double heading_deg, double pitch_deg,
                               double roll_deg) const {
-  const Geodetic g = to_geodetic(local_pos);
+  return to_dis_euler(to_geodetic(local_pos), heading_deg, pitch_deg, roll_deg);
+}
+
+Vec3 LocalFrame::to_dis_euler(const Geodetic& g, double heading_deg, double pitch_deg, double roll_deg) const {
   // Grid heading -> true heading: grid north lies gamma clockwise of true north.
   const double true_heading = deg2rad(heading_deg + convergence_deg(g));
   const Mat3 body_to_ned = zyx_rotation(true_heading, deg2rad(pitch_deg), deg2rad(roll_deg));

@@ -57,6 +57,8 @@ class LocalFrame {
   // the new X. The TM grid convergence at local_pos is applied, so both directions round-trip.
   Vec3 to_dis_euler(const Vec3& local_pos, double heading_deg, double pitch_deg,
                     double roll_deg) const;
+  // The same at g = to_geodetic(local_pos), already known (one TM inverse fewer).
+  Vec3 to_dis_euler(const Geodetic& g, double heading_deg, double pitch_deg, double roll_deg) const;
   Vec3 from_dis_euler(const Vec3& local_pos, const Vec3& psi_theta_phi) const;  // -> h, p, r deg
   // Grid convergence at g (deg): the azimuth of local +y (grid north) clockwise from true
   // north. A local (grid) heading plus this is the true heading.

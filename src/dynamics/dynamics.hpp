@@ -6,13 +6,16 @@
 // target entity.
 // Only local, active entities are moved; remote ones come from the network.
 // Threading: step and drive write only the pose, velocity, route leg and fuel of the entity they
-// move; a guided munition reads its target's pose after the vehicles have moved (munitions are
-// stepped after the vehicles, as their indices come later). fire and react_to_fire
-// (autonomous.hpp) read a const world and return changes for world::apply.
+// move. step moves the vehicles first (given a core::Jobs, ranges of entities on its workers:
+// each vehicle reads the terrain and its own state only, so any thread count gives the same
+// bytes), then the munitions on the calling thread in index order: a guided munition reads its
+// target's pose after the vehicles have moved. fire and react_to_fire (autonomous.hpp) read a
+// const world and return changes for world::apply.
 #pragma once
 #include <optional>
 #include <vector>
 
+#include "core/jobs.hpp"
 #include "world/changes.hpp"
 #include "world/world.hpp"
 
@@ -26,8 +29,9 @@ struct GroundImpact {
   Vec3 point{0, 0, 0};
 };
 
-// Moves every local active entity by dt. Appends munitions that met the terrain to `impacts`.
-void step(world::World& w, double dt, std::vector<GroundImpact>& impacts);
+// Moves every local active entity by dt. Appends munitions that met the terrain to `impacts`
+// (in index order). `jobs`: worker threads for the vehicles (nullptr: this thread only).
+void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::Jobs* jobs = nullptr);
 
 // Terrain following for a ground vehicle at its current (x, y): sets z, pitch and roll from the
 // terrain under the corners of its footprint (the intact model's extent).

@@ -168,13 +168,20 @@ void follow_terrain(world::World& w, int e) {
   ents.roll_deg[e] = static_cast<float>(rad2deg(std::atan2(hl - hr, 2 * half_wid)));  // right side down +
 }
 
-void step(world::World& w, double dt, std::vector<GroundImpact>& impacts) {
+void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::Jobs* jobs) {
   auto& ents = w.ents;
-  for (int e = 0; e < static_cast<int>(ents.size()); ++e) {
-    if (!ents.active[e] || !ents.local[e] || ents.driven[e]) continue;  // a player drives it: drive.hpp
-    if (w.kinds[ents.kind[e]].mobility == Mobility::Munition) step_munition(w, e, dt, impacts);
-    else step_vehicle(w, e, dt);
-  }
+  const size_t n = ents.size();
+  // A player drives its vehicle (drive.hpp); munitions come second, below.
+  auto moves = [&](size_t e) { return ents.active[e] && ents.local[e] && !ents.driven[e]; };
+  auto vehicles = [&](int, size_t e0, size_t e1) {
+    for (size_t e = e0; e < e1; ++e)
+      if (moves(e) && w.kinds[ents.kind[e]].mobility != Mobility::Munition) step_vehicle(w, static_cast<int>(e), dt);
+  };
+  constexpr size_t kGrain = 2048;  // vehicles per chunk below which one thread does it all
+  if (jobs) jobs->for_chunks(n, kGrain, vehicles);
+  else vehicles(0, 0, n);
+  for (size_t e = 0; e < n; ++e)
+    if (moves(e) && w.kinds[ents.kind[e]].mobility == Mobility::Munition) step_munition(w, static_cast<int>(e), dt, impacts);
 }
 
 std::optional<world::Launch> fire(const world::World& w, int shooter, int munition_kind, const Vec3& target_point,

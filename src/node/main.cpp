@@ -62,6 +62,10 @@ Exit codes: 0 ok, 2 bad input (nothing written), 1 failure while running.)");
   run->add_option("--size", size, "snapshot size WxH (default 960x540)");
   run->add_flag("--no-render", o.no_render, "do not render snapshots (event log only)");
   run->add_flag("--quiet", o.quiet, "no progress on stderr");
+  run->add_option("--threads", o.threads,
+                  "threads for dynamics and collision (default: the cores, at most 8; 1 = one thread); "
+                  "the event log is the same for any number")
+      ->check(CLI::Range(1, 64));
   run->add_option("--drive", o.drive, "the vehicle the player drives (default: the first vehicle of this node)");
   run->add_option("--input", o.input, "replay the player's actions from this JSON Lines file (works headless)");
   run->add_option("--record-input", o.record_input, "write the player's actions to this JSON Lines file");

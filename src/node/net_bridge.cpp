@@ -319,12 +319,20 @@ void NetBridge::publish_vehicles() {
   const double t = w.t + dt;  // the time of the state: dynamics has stepped, w.t not yet
   const size_t n = own_.size();
   size_t sent_now = 0, first_deferred = n;
+  // Every vehicle's state in DIS terms (the costly part: geodesy), on the tick's threads.
+  truth_.resize(n);
+  auto truths = [&](int, size_t i0, size_t i1) {
+    for (size_t i = i0; i < i1; ++i)
+      if (!removed_[i]) truth_[i] = entity_truth(w, own_[i]);
+  };
+  if (core::Jobs* jobs = sim_.jobs()) jobs->for_chunks(n, 512, truths);
+  else truths(0, 0, n);
   // Round robin from where the last tick's cap stopped, so no vehicle waits more than a few ticks.
   for (size_t k = 0; k < n; ++k) {
     const size_t i = (rr_ + k) % n;
     const int e = own_[i];
     if (removed_[i]) continue;  // taken out by a Remove Entity
-    net::KinematicState s = entity_truth(w, e);
+    net::KinematicState s = truth_[i];
     const Vec3 v = vv(s.velocity);
     // Published acceleration: the velocity change per tick, low-pass filtered over kAccelTauS
     // and zero at rest (a tank stopping in one tick is not sent as |a| = 100 m/s^2).

@@ -14,6 +14,9 @@
 //    arrival_s is the bridge clock (steady seconds, clock_s()). set_source() replaces the socket
 //    by another source of datagrams (run --replay: a recording, node/replay_feed.hpp), called
 //    each tick with the bridge clock, which is then the scenario clock (world t, s).
+//  * Threading: the bridge runs on the tick's thread; the per-vehicle DIS state (geodesy) of
+//    publishing is computed on the Simulation's worker threads (Simulation::jobs), each vehicle
+//    into its own slot, then decided and sent in order: the same PDUs for any thread count.
 //  * Local vehicles (ents.local && ents.node == --node) go out as Entity State PDUs: ECEF
 //    position (m), DIS Euler angles (rad), ECEF velocity (m/s) and acceleration (m/s^2, the
 //    per-tick velocity change low-pass filtered over 0.5 s, zero at rest), yaw rate (rad/s,
@@ -193,6 +196,7 @@ class NetBridge {
   std::unique_ptr<AreaOfInterest> aoi_;
   std::vector<float> prev_heading_;
   std::vector<std::uint8_t> removed_;  // per local vehicle: taken out by a Remove Entity
+  std::vector<net::KinematicState> truth_;  // per local vehicle: this tick's state (reused)
   // Simulation management: pending freeze / resume (UNIX s, -1 none), scenario time to resume at.
   double freeze_at_ = -1, resume_at_ = -1, resume_sim_t_ = -1, frozen_hb_s_ = 0;
   bool frozen_ = false;

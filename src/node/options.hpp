@@ -30,6 +30,7 @@ struct RunOptions {
   int max_snapshots = 200, max_snapshots_per_minute = 60;  // snapshot budget (snapshots.hpp)
   int width = 960, height = 540;
   bool no_render = false;
+  int threads = 0;           // --threads N: threads of the tick's parallel stages; 0 = core::Jobs::default_threads()
   bool quiet = false;
   // The player (shared/ARCHITECTURE.md, "Player"): with --window, --drive, --input or
   // --record-input this node has a player driving one of its vehicles.

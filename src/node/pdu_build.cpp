@@ -25,10 +25,11 @@ net::KinematicState entity_truth(const world::World& w, int e) {
   const auto& frame = w.terrain.frame();
   net::KinematicState s;
   const Vec3 p = w.ents.pos[e];
-  const Vec3 pe = frame.to_ecef(p);
+  const geo::Geodetic g = frame.to_geodetic(p);  // once, for the position and the orientation
+  const Vec3 pe = geo::geodetic_to_ecef(g);
   s.position = ev(pe);
   s.velocity = ev(frame.to_ecef(p + w.ents.vel[e]) - pe);
-  const Vec3 eu = frame.to_dis_euler(p, w.ents.heading_deg[e], w.ents.pitch_deg[e], w.ents.roll_deg[e]);
+  const Vec3 eu = frame.to_dis_euler(g, w.ents.heading_deg[e], w.ents.pitch_deg[e], w.ents.roll_deg[e]);
   s.orientation = {eu.x(), eu.y(), eu.z()};
   return s;
 }

@@ -174,6 +174,7 @@ int run_command(const RunOptions& opt) {
   // renderer, then the event log is opened (truncated) last.
   EventLog log;
   Simulation sim(std::move(w), sc, log, o.dt);
+  sim.set_threads(o.threads > 0 ? o.threads : core::Jobs::default_threads());
   std::unique_ptr<Player> player;
   if (has_player) {
     player = std::make_unique<Player>(sim, log, first_driven, std::move(script));

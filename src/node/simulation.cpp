@@ -175,6 +175,13 @@ void Simulation::set_driven(int e) {
   if (e >= 0) w_.ents.driven[e] = 1;
 }
 
+void Simulation::set_threads(int n, size_t max_grain) {
+  jobs_.reset();
+  if (n > 1) jobs_ = std::make_unique<core::Jobs>(n);
+  if (jobs_) jobs_->set_max_grain(max_grain);
+  detector_.set_jobs(jobs_.get());
+}
+
 void Simulation::inject(const world::Changes& c) { append(injected_, c); }
 void Simulation::set_time(double t) {
   w_.frame = std::llround(std::max(0.0, t) / dt_);
@@ -192,7 +199,7 @@ void Simulation::tick() {
   if (before_step) before_step(w_);
   scheduled_fires();
   if (before_dynamics) before_dynamics();
-  dynamics::step(w_, dt_, impacts_);
+  dynamics::step(w_, dt_, impacts_, jobs_.get());
   if (driven_ >= 0 && w_.ents.driven[driven_] && w_.ents.local[driven_]) dynamics::drive(w_, driven_, controls, dt_, crashes_);
   detector_.detect(w_, contacts_);
   if (decides)

@@ -14,11 +14,16 @@
 //   7. on_tick (renderer, snapshots, net out), then the clock advances.
 // Nothing else changes the world. Every collision, damage change, fire, detonation and crater
 // goes to the event log.
-// Threading: a Simulation and its World belong to one thread (the tick's); stages 3 and 4 may
-// fan out to workers that read the world (and write only their own entities in 3).
+// Threading: a Simulation and its World belong to one thread (the tick's). With set_threads(n),
+// n > 1, stages 3 (dynamics::step, per range of vehicles) and 4 (collision::detect: sweeps, fixed
+// tests, pair search, narrow phase) fan out to a core::Jobs pool of n threads; every range writes
+// only its own entities or its own buffers, merged in a fixed order: the event log and the world
+// are the same bytes for any thread count (tests/node/test_threads.cpp). Everything else runs on
+// the tick's thread.
 #pragma once
 #include <deque>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "collision/collision.hpp"
@@ -41,6 +46,13 @@ class Simulation {
  public:
   Simulation(world::World w, const world::Scenario& s, EventLog& log, double dt);
   void tick();
+  // Threads for the tick's parallel stages (1 = none besides the caller, the default; clamped to
+  // [1, core::Jobs::kMaxThreads]). max_grain > 0 caps the stages' grain (core::Jobs::set_max_grain;
+  // tests: 1 splits every stage however small).
+  void set_threads(int n, size_t max_grain = 0);
+  int threads() const { return jobs_ ? jobs_->threads() : 1; }
+  // The worker pool (nullptr with one thread): other stages of the tick on its thread may use it.
+  core::Jobs* jobs() { return jobs_.get(); }
   world::World& world() { return w_; }
   const world::World& world() const { return w_; }
   double dt() const { return dt_; }
@@ -98,6 +110,7 @@ class Simulation {
   };
   std::vector<Scheduled> schedule_;
   size_t next_fire_ = 0;
+  std::unique_ptr<core::Jobs> jobs_;
   collision::Detector detector_;
   collision::RespondScratch respond_scratch_;
   std::vector<collision::Contact> contacts_;

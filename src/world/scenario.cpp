@@ -206,7 +206,7 @@ Scenario load_scenario_text(std::string_view text, const std::filesystem::path& 
   }
   if (const toml::table* b = root["background"].as_table()) {
     const int bl = r.line(b);
-    r.unknown_keys(*b, "background.", {"vehicles", "seed", "exclude_m"});
+    r.unknown_keys(*b, "background.", {"vehicles", "seed", "exclude_m", "area_m"});
     if (auto n = r.number(*b, "vehicles", "background.vehicles", true, bl)) {
       if (*n < 0 || *n > 1e6 || *n != std::floor(*n)) r.problem(b->get("vehicles"), "background.vehicles", "must be an integer 0-1000000");
       else s.background_vehicles = static_cast<int>(*n);
@@ -217,6 +217,10 @@ Scenario load_scenario_text(std::string_view text, const std::filesystem::path& 
     }
     if (auto e = r.numbers(*b, "exclude_m", "background.exclude_m", 4, 4, false, bl))
       s.background_exclude = std::make_pair(Vec2((*e)[0], (*e)[1]), Vec2((*e)[2], (*e)[3]));
+    if (auto a = r.numbers(*b, "area_m", "background.area_m", 4, 4, false, bl)) {
+      if (!((*a)[0] < (*a)[2] && (*a)[1] < (*a)[3])) r.problem(b->get("area_m"), "background.area_m", "must be [x0, y0, x1, y1] with x0 < x1 and y0 < y1");
+      else s.background_area = std::make_pair(Vec2((*a)[0], (*a)[1]), Vec2((*a)[2], (*a)[3]));
+    }
   }
   // Fire references resolve against scenario ids (vehicles); munition kinds are checked with the world.
   for (size_t i = 0; i < s.fires.size(); ++i) {
@@ -380,9 +384,13 @@ World build_world(const Scenario& s) {
   if (s.background_vehicles > 0) {
     Rng rng(s.background_seed);
     const char* bg_kinds[] = {"m1a1", "hmmwv", "bmp"};
+    Vec2 lo(200, 200), hi(w.terrain.width_m() - 200, w.terrain.depth_m() - 200);
+    if (s.background_area) lo = lo.cwiseMax(s.background_area->first), hi = hi.cwiseMin(s.background_area->second);
+    if (!(lo.x() < hi.x() && lo.y() < hi.y()))
+      throw InputError(sf, 0, "background.area_m", "lies outside the terrain (less 200 m at its edges)");
     auto free_spot = [&](Vec2& out) {
       for (int tries = 0; tries < 1000; ++tries) {
-        Vec2 q(rng.uniform(200, w.terrain.width_m() - 200), rng.uniform(200, w.terrain.depth_m() - 200));
+        Vec2 q(rng.uniform(lo.x(), hi.x()), rng.uniform(lo.y(), hi.y()));
         if (w.is_water(q.x(), q.y())) continue;
         if (s.background_exclude) {
           const auto& [lo, hi] = *s.background_exclude;

@@ -64,6 +64,9 @@ struct Scenario {
   uint64_t background_seed = 1;
   // A region kept free of background traffic (the Appendix A cases live there).
   std::optional<std::pair<Vec2, Vec2>> background_exclude;
+  // The region background traffic is placed and driven in ([x0, y0], [x1, y1], m; default: the
+  // whole map less 200 m at the edges): a crowd, for the threading test and the tick benchmark.
+  std::optional<std::pair<Vec2, Vec2>> background_area;
 };
 
 Scenario load_scenario(const std::filesystem::path& file);

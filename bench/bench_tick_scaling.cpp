@@ -1,0 +1,162 @@
+// bench_tick_scaling: milliseconds per whole node tick against the number of vehicles, on 1 and
+// on 2 threads (issue 13). The scene: the default scenario (its world: 50 km of terrain, 40,303
+// fixed objects; its Appendix A vehicles and fires) with N background vehicles spread over the
+// map ([background] vehicles = N, the default run's traffic at other sizes). The tick is the
+// node's whole tick without rendering: net in and net out through an offline NetBridge (dead
+// reckoning, Entity State / Fire / Detonation PDUs encoded, not sent: BridgeOptions::offline),
+// dynamics, collision (continuous, auto tiers), response, apply, the event log (written to a
+// file in $TMPDIR). The same without the bridge (net off, as `npsnet run --no-render`, how the
+// old main's 0.5 us per vehicle was measured) for comparison.
+// Each N: the world is built once; four Simulations are made from it (net on / off x 1 / 2
+// threads), each runs `warm` ticks untimed (the first builds shapes and grids), then they take
+// turns, one tick each, for `ticks` rounds, every tick timed alone (steady_clock): the machine's
+// other load falls on all four alike. Reported: the median (and the minimum) wall ms per tick,
+// and the median CPU ms the process spent in the tick (all its threads; on a machine shared
+// with other work, wall time includes waiting for a core). The
+// 1- and 2-thread runs of each kind run the same ticks (their event logs are compared: they must
+// be the same bytes, else the bench stops). A DIS node numbers at most 32,767 entities of its
+// own (net/): above that the node cannot publish them all and only "net off" is measured.
+// Usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...]
+//   default N = 500 ... 200,000 -> bench/results/tick_scaling.csv; --quick: 500 and 5,000, no CSV.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "node/net_bridge.hpp"
+#include "node/simulation.hpp"
+
+using namespace npsnet;
+
+namespace {
+
+constexpr size_t kMaxOwnEntities = 32767;  // DIS entity numbers of one node (net_bridge.cpp)
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// One node: its event log (a file), Simulation, and, with net, an offline bridge.
+struct Node {
+  std::filesystem::path file;
+  node::EventLog log;
+  node::Simulation sim;
+  std::unique_ptr<node::NetBridge> bridge;
+  std::vector<double> ms;
+  Node(const world::World& w, const world::Scenario& sc, int threads, bool net, const std::string& tag)
+      : file(std::filesystem::temp_directory_path() / ("npsnet-tick-scaling-" + std::to_string(::getpid()) + tag)),
+        log(file),
+        sim(w, sc, log, 0.1) {
+    sim.set_threads(threads);
+    if (net) {
+      node::BridgeOptions bo;
+      bo.offline = true;
+      bridge = std::make_unique<node::NetBridge>(bo, sim, log);
+      bridge->attach();
+    }
+  }
+  std::vector<double> cpu_ms;  // the process's CPU time over the tick (every thread of it)
+  void timed_tick() {
+    const double c0 = cpu_now_ms();
+    const auto t0 = std::chrono::steady_clock::now();
+    sim.tick();
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    cpu_ms.push_back(cpu_now_ms() - c0);
+  }
+  static double cpu_now_ms() {
+    timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+  }
+  static double median_of(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+  }
+  double median() const { return median_of(ms); }
+  double cpu_median() const { return median_of(cpu_ms); }
+  double min() const { return *std::min_element(ms.begin(), ms.end()); }
+  int collisions() const { return log.counts().count("collision") ? log.counts().at("collision") : 0; }
+  std::string events() {
+    log.flush();
+    return slurp(file);
+  }
+  ~Node() {
+    bridge.reset();
+    std::error_code ec;
+    std::filesystem::remove(file, ec);
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<int> ns = {500, 1000, 2000, 5000, 10000, 20000, 50000, 100000, 200000};
+  std::string csv = std::string(NPSNET_SOURCE_DIR) + "/bench/results/tick_scaling.csv";
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--quick")) ns = {500, 5000}, csv.clear();
+    else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
+    else if (!std::strcmp(argv[i], "--n") && i + 1 < argc) {
+      ns.clear();
+      std::stringstream ss(argv[++i]);
+      for (std::string t; std::getline(ss, t, ',');) ns.push_back(std::stoi(t));
+    } else {
+      std::fprintf(stderr, "usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...]\n");
+      return 2;
+    }
+  }
+  const world::Scenario base = world::load_scenario(std::string(NPSNET_SOURCE_DIR) + "/scenarios/default.toml");
+  std::ofstream out;
+  if (!csv.empty()) {
+    out.open(csv);
+    out << "n,entities,warm_ticks,ticks,net_ms_1t,net_ms_2t,nonet_ms_1t,nonet_ms_2t,net_min_ms_1t,net_min_ms_2t,"
+           "nonet_min_ms_1t,nonet_min_ms_2t,net_cpu_ms_1t,net_cpu_ms_2t,nonet_cpu_ms_1t,nonet_cpu_ms_2t,collisions\n";
+  }
+  std::printf("%8s %9s %6s | %-27s | %-27s | %s\n", "N", "entities", "ticks", "whole tick ms: 1t, 2t, x",
+              "net off ms: 1t, 2t, x", "collisions");
+  for (int n : ns) {
+    world::Scenario sc = base;
+    sc.background_vehicles = n;
+    const world::World w = world::build_world(sc);
+    const bool net = w.ents.size() <= kMaxOwnEntities;
+    // Short runs at the largest N (a few minutes in all on the 2-core machine).
+    const int ticks = n <= 5000 ? 41 : n <= 20000 ? 21 : n <= 50000 ? 11 : n <= 100000 ? 7 : 5;
+    const int warm = n <= 50000 ? 5 : 3;
+    std::vector<std::unique_ptr<Node>> nodes;  // [net off 1t, net off 2t, net 1t, net 2t]
+    for (int k = 0; k < (net ? 4 : 2); ++k)
+      nodes.push_back(std::make_unique<Node>(w, sc, 1 + k % 2, k >= 2, "-" + std::to_string(k) + ".jsonl"));
+    for (auto& nd : nodes)
+      for (int i = 0; i < warm; ++i) nd->sim.tick();
+    for (int i = 0; i < ticks; ++i)
+      for (auto& nd : nodes) nd->timed_tick();
+    for (size_t k = 0; k < nodes.size(); k += 2)
+      if (nodes[k]->events() != nodes[k + 1]->events()) {
+        std::fprintf(stderr, "N = %d: the event logs of 1 and 2 threads differ\n", n);
+        return 1;
+      }
+    double med[4] = {0, 0, 0, 0}, mn[4] = {0, 0, 0, 0}, cpu[4] = {0, 0, 0, 0};
+    for (size_t k = 0; k < nodes.size(); ++k)
+      med[k] = nodes[k]->median(), mn[k] = nodes[k]->min(), cpu[k] = nodes[k]->cpu_median();
+    auto cell = [&](double v) { return net ? std::to_string(v) : std::string(); };  // empty: not measured
+    std::printf("%8d %9zu %6d | %8.3f %8.3f %5.2f      | %8.3f %8.3f %5.2f      | %d\n", n, w.ents.size(), ticks,
+                med[2], med[3], net ? med[2] / med[3] : 0.0, med[0], med[1], med[0] / med[1], nodes[0]->collisions());
+    std::fflush(stdout);
+    if (out)
+      out << n << ',' << w.ents.size() << ',' << warm << ',' << ticks << ',' << cell(med[2]) << ',' << cell(med[3])
+          << ',' << med[0] << ',' << med[1] << ',' << cell(mn[2]) << ',' << cell(mn[3]) << ',' << mn[0] << ','
+          << mn[1] << ',' << cell(cpu[2]) << ',' << cell(cpu[3]) << ',' << cpu[0] << ',' << cpu[1] << ','
+          << nodes[0]->collisions() << std::endl;
+  }
+  return 0;
+}

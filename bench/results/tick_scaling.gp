@@ -1,0 +1,23 @@
+# Whole node tick (net in, dynamics, collision, response, apply, events, net out; no rendering)
+# against the number of vehicles on the default world, 1 and 2 threads (bench_tick_scaling ->
+# tick_scaling.csv; scene and method in bench/bench_tick_scaling.cpp).
+#   gnuplot bench/results/tick_scaling.gp   (from the repository root)
+set terminal pngcairo size 1000,650 font "sans,11"
+set output "bench/results/tick_scaling.png"
+set datafile separator ","
+set logscale xy
+set grid
+set key top left
+set xrange [400:250000]
+set format x "%.0s%c"
+set xlabel "vehicles N (default world, background traffic spread over the 50 km map)"
+set ylabel "median ms per tick (log)"
+set title "Node tick against N on the 2-core machine (bench/bench\\_tick\\_scaling.cpp)"
+old(x) = 0.0005 * x     # the old main: about 0.5 us per vehicle (issue 13, npsnet run --no-render)
+frame60(x) = 1000.0 / 60
+plot "bench/results/tick_scaling.csv" skip 1 using 1:5 with linespoints pt 7 lw 2 title "whole tick (net in/out), 1 thread", \
+     "" skip 1 using 1:6 with linespoints pt 5 lw 2 title "whole tick (net in/out), 2 threads", \
+     "" skip 1 using 1:7 with linespoints pt 6 lw 1 dt 2 title "net off, 1 thread", \
+     "" skip 1 using 1:8 with linespoints pt 4 lw 1 dt 2 title "net off, 2 threads", \
+     old(x) with lines lw 2 dt 3 lc rgb "gray40" title "old main: 0.5 us per vehicle (net off)", \
+     frame60(x) with lines lw 1 lc rgb "red" title "16.7 ms (60 Hz)"

@@ -1,0 +1,141 @@
+// The tick on 1 and on several threads (issue 13): the same event log bytes and the same world.
+// The scene: the default world and scenario (its Appendix A cases, their fires) plus a crowd of
+// 6,000 background vehicles driving in a 4 km square of forest (node/simulation.hpp, threading),
+// so that the stages are cut into ranges (the 3-thread run cuts every stage, whatever its size) and
+// the crowd collides with itself and with trees.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "core/jobs.hpp"
+#include "node/simulation.hpp"
+#include "support/scratch.hpp"
+
+using namespace npsnet;
+
+namespace {
+
+struct Outcome {
+  std::string events;
+  std::vector<Vec3> pos;
+  std::vector<int> state;
+  int64_t sweep_pairs = 0, contacts = 0;
+};
+
+const world::Scenario& crowd_scenario() {
+  static const world::Scenario sc = [] {
+    world::Scenario s = world::load_scenario(std::string(NPSNET_SOURCE_DIR) + "/scenarios/default.toml");
+    s.background_vehicles = 6000;
+    s.background_seed = 13;
+    s.background_area = std::make_pair(Vec2(20000, 30000), Vec2(24000, 34000));
+    return s;
+  }();
+  return sc;
+}
+
+const world::World& crowd_world() {
+  static const world::World w = world::build_world(crowd_scenario());
+  return w;
+}
+
+Outcome run(int threads, int ticks, size_t max_grain) {
+  const auto file = test::scratch_dir() / ("threads-" + std::to_string(threads) + ".jsonl");
+  Outcome r;
+  {
+    node::EventLog log(file);
+    node::Simulation sim(crowd_world(), crowd_scenario(), log, 0.1);
+    sim.set_threads(threads, max_grain);
+    EXPECT_EQ(sim.threads(), threads);
+    for (int i = 0; i < ticks; ++i) sim.tick();
+    const auto& ents = sim.world().ents;
+    r.pos = ents.pos;
+    r.state.assign(ents.state.begin(), ents.state.end());
+    r.sweep_pairs = sim.stats().sweep_pairs;
+    r.contacts = sim.stats().contacts;
+  }
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.events = ss.str();
+  return r;
+}
+
+// Events of a type in a JSON Lines log; `pick` counts only those it accepts.
+template <class F>
+int count(const std::string& text, const std::string& type, F pick) {
+  int n = 0;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    const auto ev = nlohmann::json::parse(line);
+    if (ev["event"] == type && pick(ev)) ++n;
+  }
+  return n;
+}
+bool any(const nlohmann::json&) { return true; }
+bool background(const nlohmann::json& v) { return v.is_string() && v.get<std::string>().rfind("bg", 0) == 0; }
+
+}  // namespace
+
+TEST(Threads, CrowdEventLogIsTheSameBytesOnOneTwoAndThreeThreads) {
+  const int ticks = 100;  // 10 s: the scenario's fires (2-5 s) and their detonations (6 s on) are in it
+  const Outcome one = run(1, ticks, 0);
+  // The crowd collides: vehicles with each other and with the forest, many times.
+  const int crowd = count(one.events, "collision", [](const nlohmann::json& ev) { return background(ev["a"]); });
+  const int crowd_pairs =
+      count(one.events, "collision", [](const nlohmann::json& ev) { return background(ev["a"]) && background(ev["b"]); });
+  EXPECT_GT(crowd, 50) << "the crowd should collide";
+  EXPECT_GT(crowd_pairs, 10) << "vehicle-vehicle contacts in the crowd";
+  EXPECT_GT(count(one.events, "detonation", any), 0);
+  std::printf("crowd: %d collisions (%d vehicle pairs), %lld contacts, %lld swept pairs in %d ticks\n", crowd,
+              crowd_pairs, static_cast<long long>(one.contacts), static_cast<long long>(one.sweep_pairs), ticks);
+  // 2 threads as the node runs; 3 threads with every stage split three ways however small.
+  for (auto [threads, grain] : {std::pair<int, size_t>{2, 0}, {3, 1}}) {
+    const Outcome many = run(threads, ticks, grain);
+    EXPECT_EQ(many.events.size(), one.events.size()) << threads << " threads";
+    EXPECT_TRUE(many.events == one.events) << threads << " threads: the event logs differ";
+    ASSERT_EQ(many.pos.size(), one.pos.size());
+    size_t moved = 0;
+    for (size_t e = 0; e < one.pos.size(); ++e) {
+      EXPECT_EQ(many.pos[e], one.pos[e]) << "entity " << e << ", " << threads << " threads";
+      moved += many.pos[e] == one.pos[e] ? 0 : 1;
+      if (moved > 5) break;
+    }
+    EXPECT_EQ(many.state, one.state);
+    EXPECT_EQ(many.sweep_pairs, one.sweep_pairs);
+    EXPECT_EQ(many.contacts, one.contacts);
+  }
+}
+
+TEST(Threads, JobsSplitIntoFixedRangesAndRethrowTheFirstError) {
+  core::Jobs jobs(3);
+  EXPECT_EQ(jobs.chunks(10, 1), 3);
+  EXPECT_EQ(jobs.chunks(10, 4), 2);
+  EXPECT_EQ(jobs.chunks(3, 100), 1);
+  std::vector<int> owner(1000, -1);
+  jobs.for_chunks(owner.size(), 1, [&](int c, size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) owner[i] = c;
+  });
+  for (size_t i = 0; i < owner.size(); ++i) {
+    const int c = i < 333 ? 0 : i < 666 ? 1 : 2;  // chunk c = [1000 c / 3, 1000 (c + 1) / 3)
+    EXPECT_EQ(owner[i], c) << i;
+  }
+  // Items 500 and 900 are bad: the error of the lower one comes back, after all chunks ran.
+  std::vector<int> ran(3, 0);
+  try {
+    jobs.for_chunks(owner.size(), 1, [&](int c, size_t b, size_t e) {
+      ran[c] = 1;
+      for (size_t i = b; i < e; ++i)
+        if (i == 500 || i == 900) throw std::runtime_error("bad " + std::to_string(i));
+    });
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "bad 500");
+  }
+  EXPECT_EQ(ran, std::vector<int>({1, 1, 1}));
+  // Reusable after an error, and a pool of one runs on the caller.
+  int sum = 0;
+  core::Jobs single(1);
+  single.for_chunks(100, 1, [&](int c, size_t b, size_t e) { sum += c + static_cast<int>(e - b); });
+  EXPECT_EQ(sum, 100);
+}
