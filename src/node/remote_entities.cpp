@@ -237,8 +237,10 @@ std::string RemoteEntities::listing(double now_s, std::size_t max_lines) const {
   for (std::size_t i = 0; i < n && i < max_lines; ++i) {
     const net::RemoteEntity& r = table_[i];
     const int e = index_of(r.id);
-    const std::string kind = e >= 0 ? w.kinds[w.ents.kind[e]].name : "none";
-    const std::string state = e >= 0 ? w.kinds[w.ents.kind[e]].states[w.ents.state[e]] : "unknown";
+    const char* track = e >= 0 ? "" : tracked_as(r.type);  // tracked only: what it is, its damage bits
+    const std::string kind = e >= 0 ? w.kinds[w.ents.kind[e]].name : *track ? track : "none";
+    const std::string state = e >= 0 ? w.kinds[w.ents.kind[e]].states[w.ents.state[e]]
+                              : *track ? kDamageNames[damage_bits(r.appearance)] : "unknown";
     char b[160];
     std::snprintf(b, sizeof b, " owner site %u app %u last update %.1f s ago damage ", r.id.site, r.id.application,
                   now_s - r.last_update_s);

@@ -60,6 +60,7 @@ class RemoteEntities {
   // One line per remote entity heard and not gone (at most max_lines, then how many more):
   // "  remote 1:50:1 \"r1\" type 1:1:225:1:1:3:0 (m1a1) owner site 1 app 50 last update 0.4 s ago
   // damage intact (appearance damage 0) force 1". The marking is JSON-quoted (decoded, made safe).
+  // A tracked-only entity shows what it is tracked as ("(lifeform)") and its damage bits' name.
   std::string listing(double now_s, std::size_t max_lines = 100) const;
 
  private:

@@ -1,7 +1,9 @@
 // Remote entities in the summaries (issue 10, defect 7), through the real path: a peer's two
-// vehicles (one Latin-1 marking, one with a control character) in a running node; SIGUSR1 in the
-// middle of the run and the end-of-run summary each list them (id, marking made safe, type and
-// kind, owner site/application, last update age, damage). The old node printed only a count.
+// vehicles (one Latin-1 marking, one with a control character) and a soldier in a running node;
+// SIGUSR1 in the middle of the run and the end-of-run summary each list them (id, marking made
+// safe, type and kind, owner site/application, last update age, damage; the soldier, tracked and
+// not in the world, as "lifeform" with its damage bits' name, was "none" and "unknown"). The old
+// node printed only a count.
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -27,8 +29,11 @@ TEST(FederateSummary, Usr1AndEndOfRunListRemoteEntities) {
   // an aircraft no kind has: generic_air
   auto r2 = fed::entity_state(peer, 2, {1, 2, 225, 1, 9, 9, 0}, "", f.ecef(100, 300, 500));
   fed::set_marking_bytes(r2, {'a', 0x01, 'b'});
+  // a soldier (tracked, not in the world), moderately damaged: listed as what it is and its damage
+  auto s3 = fed::entity_state(peer, 3, {3, 1, 225, 1, 0, 0, 0}, "inf3", f.ecef(120, 100));
+  s3.appearance = 2u << 3;
   fed::sleep_until(node.start + 0.3);
-  peer.send(r1), peer.send(r2);
+  peer.send(r1), peer.send(r2), peer.send(s3);
   fed::sleep_until(node.start + 1.5);
   ASSERT_EQ(::kill(node.pid, SIGUSR1), 0);
   fed::sleep_until(node.start + 2.0);
@@ -41,6 +46,8 @@ TEST(FederateSummary, Usr1AndEndOfRunListRemoteEntities) {
   EXPECT_EQ(count_of(out, "remote 1:50:2 "), 2u) << out;
   EXPECT_EQ(out.find('\x01'), std::string::npos) << "no control character reaches the terminal";
   EXPECT_NE(out.find("type 1:2:225:1:9:9:0 (generic_air)"), std::string::npos) << out;
+  EXPECT_EQ(count_of(out, "remote 1:50:3 \"inf3\" type 3:1:225:1:0:0:0 (lifeform) owner site 1 app 50"), 2u) << out;
+  EXPECT_EQ(count_of(out, "damage moderate (appearance damage 2)"), 2u) << out;
 }
 
 // Every remote entity's damage changes and departures are logged (issue 10, defect 7), also for
