@@ -31,6 +31,7 @@
 // merged in range order, so contacts, events and stats are the same bytes for any thread count.
 // The world is changed only by world::apply of respond's Changes.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -56,6 +57,7 @@ struct Contact : Trace {
   bool b_fixed = false;
   double dt_s = 0;        // the tick the fraction refers to (s); 0 = thesis
   const char* method = "";
+  const char* tier = "";  // the tier that decided it (tier_name)
 };
 // The key of a contact episode (moving pairs unordered; fixed contacts flagged).
 uint64_t contact_key(int a, int b, bool b_fixed);
@@ -77,6 +79,43 @@ struct Options {
   Method method = Method::Continuous;
   Tier tier = Tier::Auto;
   double dt_s = thesis::kDefaultDtS;  // the tick the continuous sweep spans (s)
+  double budget_ms = world::kDefaultCollisionBudgetMs;  // auto tier: modelled narrow phase per tick (ms)
+};
+
+// ---- scene-aware auto tier (issue 13) ---------------------------------------------------------
+// With tier auto (continuous method), each tick the pairs whose bounding spheres meet outside a
+// running episode (the pairs that need a narrow phase) are given a tier:
+//  * required pairs get their exact tier (min of both kinds' top_tier): a pair with a
+//    player-driven vehicle (ents.driven), a snapshotted vehicle (ents.snapshots: its collisions
+//    make imminent/result snapshots), or either body's bounding sphere inside a viewer's view
+//    volume (set_views);
+//  * the others, most important first (closing speed, then id order), get the highest tier up
+//    to their exact one whose modelled cost (kTierCostUs) fits what is left of the budget
+//    (budget_ms, scenario key collision_budget_ms, after the required pairs are charged); when
+//    none fits, the sphere tier: the thesis spheres swept, so a pair is never skipped and every
+//    contact the sphere tier finds is reported. The least important pairs are lowered first.
+// The cost model is fixed (not timed), so the choice, the events and the world are the same on
+// every run and thread count. Every contact names the tier that decided it (Contact::tier).
+// Modelled cost of one pair's narrow phase at each tier (us; index = Tier): the time per pair of
+// bench/bench_accuracy.cpp (README, accuracy table: sphere 0.24, box 27.1, hull 49.5, mesh 164).
+inline constexpr double kTierCostUs[5] = {0.0, 0.24, 27.1, 49.5, 164.0};
+// A viewer's view volume in the local frame (m): p is inside when, for all six planes (n, d),
+// n . (p - eye) + d >= 0 (render::ViewMath's planes, eye-relative, n unit).
+struct ViewVolume {
+  Vec3 eye{0, 0, 0};
+  std::array<Eigen::Vector4d, 6> planes{};
+  bool sphere_inside(const Vec3& c, double r) const {
+    for (const auto& p : planes)
+      if (p.head<3>().dot(c - eye) + p[3] < -r) return false;
+    return true;
+  }
+  static ViewVolume box(const Vec3& lo, const Vec3& hi);  // an axis-aligned box (tests)
+};
+// One pair's tier choice of the last tick (tests, benchmarks).
+struct TierChoice {
+  int a = -1, b = -1;
+  bool b_fixed = false, required = false;
+  Tier exact = Tier::Sphere, chosen = Tier::Sphere;
 };
 Options options_from(const std::string& method, const std::string& tier, double dt_s);
 
@@ -85,6 +124,7 @@ struct DetectStats {
   // continuous: pairs decided at each tier (index = Tier), swept-sphere hits
   int64_t tier_decided[5] = {0, 0, 0, 0, 0};
   int64_t sweep_pairs = 0, sweep_hits = 0;
+  int64_t tier_lowered = 0;  // auto: pairs given a tier below their exact one by the budget
 };
 
 class Detector {
@@ -100,6 +140,10 @@ class Detector {
   void set_jobs(core::Jobs* jobs) { jobs_ = jobs; }
   // A new tick length (s; positive and finite, else std::invalid_argument).
   void set_dt(double dt_s);
+  // Scene-aware auto tier: the budget (ms, >= 0) and the viewers' view volumes this tick.
+  void set_budget_ms(double ms) { opt_.budget_ms = ms; }
+  void set_views(const std::vector<ViewVolume>& v) { views_ = v; }
+  const std::vector<TierChoice>& tier_choices() const { return choices_; }
   // One pair of entities by this detector's method and tier, outside the episode bookkeeping
   // (benchmarks and tests): true with the contact (continuous: the first in the tick).
   bool test_pair(const world::World& w, int a, int b, Contact& k);
@@ -111,21 +155,35 @@ class Detector {
   // rank_.ranks()[e]: entity e's place in the order of ids (fixed_rank_ for fixed objects): contacts and
   // pairs are ordered by these integers, not by storage index nor by comparing strings.
   void rank_ids(const world::World& w);
+  // A pair that needs a narrow phase (auto tier): decided after allocate_tiers gave it a tier.
+  struct Pending {
+    Contact k;              // a, b, b_fixed, dt_s
+    Tier exact = Tier::Sphere, tier = Tier::Sphere;
+    double t_in = 0, t_out = 1;  // the bound spheres' first touch and exit (fractions of the tick)
+    uint32_t ia = 0, ib = 0;     // sweep slots of a and b (ib: unused for a fixed object)
+    double closing = 0;          // |va - vb| (m/s)
+    bool required = false;
+  };
   // One thread's share of a detection: merged into candidates_, touching_, stats_ in range order.
   struct Lane {
     std::vector<uint64_t> touching;
     std::vector<Contact> candidates;
     DetectStats stats;
     ShapeScratch scratch;
+    std::vector<Pending> pending;
   };
   Lane& lane(int c);
   void merge_lanes(int k);
   // The fixed objects near swept entity i (order_[i]); the moving pair pairs_[p].
   void fixed_contacts(const world::World& w, size_t i, Lane& L);
   void pair_contact(const world::World& w, size_t p, Lane& L);
+  void allocate_tiers(const world::World& w);  // scene_tiers.cpp
+  void decide_pending(const world::World& w, size_t p, Lane& L);
   // `continuing`: the pair touched last tick; its episode goes on while its bound spheres meet.
+  // `defer`: the narrow phase is left for allocate_tiers (auto tier): false, with *defer filled.
   bool moving_pair(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa, double rba,
-                   const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, bool continuing, Contact& k, Lane& L);
+                   const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, bool continuing, Contact& k, Lane& L,
+                   Pending* defer = nullptr);
   // Narrow phase of one moving pair (entities a, b) beyond the sweep: true with a contact.
   // Sweeps the posed shapes from the first touch of the bounding spheres ([t_in, t_out]) up to
   // `tier`, cheapest first; true with the time, point and normal of the first contact.
@@ -151,6 +209,10 @@ class Detector {
   std::vector<Shape> shapes_;           // per model index
   core::Jobs* jobs_ = nullptr;
   std::vector<Lane> lanes_;
+  std::vector<ViewVolume> views_;
+  std::vector<Pending> pending_;        // this tick's, in lane order
+  std::vector<uint32_t> pending_order_;
+  std::vector<TierChoice> choices_;
 };
 
 // ---- geometry (thesis Figures 4-6) ------------------------------------------------------------

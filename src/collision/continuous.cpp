@@ -106,12 +106,13 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
   k.fraction = hi;
   k.started_inside = toi.started_inside;
   k.method = method_of(tier, b_fixed);
+  k.tier = tier_name(tier);
   return true;
 }
 
 bool Detector::moving_pair(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa,
                            double rba, const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, bool continuing,
-                           Contact& k, Lane& L) {
+                           Contact& k, Lane& L, Pending* defer) {
   const auto& ents = w.ents;
   const bool mun = w.is_munition(a) || w.is_munition(b);
   const Tier tier = mun ? Tier::Sphere
@@ -130,8 +131,14 @@ bool Detector::moving_pair(const world::World& w, int a, int b, const Vec3& c0a,
     ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
     static_cast<Trace&>(k) = h;
     k.method = method_of(Tier::Sphere, false);
+    k.tier = tier_name(Tier::Sphere);
     if (mun) k.method = "continuous-munition";
     return true;
+  }
+  if (defer) {  // auto tier: allocate_tiers gives it its tier first
+    defer->k = k, defer->exact = tier, defer->t_in = h.fraction, defer->t_out = h.exit_fraction;
+    defer->closing = (ents.vel[a] - ents.vel[b]).norm();
+    return false;
   }
   return narrow(w, a, b, false, tier, h.fraction, h.exit_fraction, k, L);
 }
@@ -147,6 +154,7 @@ bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
     Vec3 p;
     if (!l3_real(w, a, b, p) && !l3_real(w, b, a, p)) return false;
     k.a = a, k.b = b, k.hit = true, k.point = p, k.fraction = 1, k.dt_s = 0, k.method = "L3-haines";
+    k.tier = tier_name(Tier::Mesh);  // the thesis L3 decides on the polygons
     const Vec3 d = cb - ca;
     k.normal = d.norm() > 1e-9 ? Vec3(d.normalized()) : Vec3::UnitX();
     return true;
@@ -187,19 +195,20 @@ void Detector::merge_lanes(int k) {
     Lane& L = lanes_[c];
     candidates_.insert(candidates_.end(), L.candidates.begin(), L.candidates.end());
     touching_.insert(touching_.end(), L.touching.begin(), L.touching.end());
-    L.candidates.clear(), L.touching.clear();
+    pending_.insert(pending_.end(), L.pending.begin(), L.pending.end());
+    L.candidates.clear(), L.touching.clear(), L.pending.clear();
     DetectStats& s = L.stats;
     stats_.fixed_tests += s.fixed_tests, stats_.l1_pairs += s.l1_pairs, stats_.l2_pairs += s.l2_pairs;
     stats_.l3_tests += s.l3_tests, stats_.l3_rejects += s.l3_rejects, stats_.contacts += s.contacts;
     for (int t = 0; t < 5; ++t) stats_.tier_decided[t] += s.tier_decided[t];
-    stats_.sweep_pairs += s.sweep_pairs, stats_.sweep_hits += s.sweep_hits;
+    stats_.sweep_pairs += s.sweep_pairs, stats_.sweep_hits += s.sweep_hits, stats_.tier_lowered += s.tier_lowered;
     s = DetectStats{};
   }
 }
 
 namespace {
 // Items per chunk below which a stage stays on one thread (waking a worker costs ~10-50 us).
-constexpr size_t kEntityGrain = 2048, kPairGrain = 256;
+constexpr size_t kEntityGrain = 2048, kPairGrain = 256, kPendingGrain = 4;
 // Runs fn(chunk, begin, end) over [0, count), on the pool when there is one.
 template <class F>
 int chunked(core::Jobs* jobs, size_t count, size_t grain, F&& fn) {
@@ -244,6 +253,12 @@ void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
       ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
       static_cast<Trace&>(k) = h;
       k.method = method_of(Tier::Sphere, true);
+      k.tier = tier_name(Tier::Sphere);
+    } else if (opt_.tier == Tier::Auto) {  // allocate_tiers gives it its tier first
+      Pending& q = L.pending.emplace_back();
+      q.k = k, q.exact = tier, q.t_in = h.fraction, q.t_out = h.exit_fraction;
+      q.ia = static_cast<uint32_t>(i), q.ib = static_cast<uint32_t>(o), q.closing = ents.vel[e].norm();
+      return;
     } else if (!narrow(w, e, static_cast<int>(o), true, tier, h.fraction, h.exit_fraction, k, L)) {
       return;
     }
@@ -263,10 +278,38 @@ void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
   if (rank_.ranks()[b] < rank_.ranks()[a]) std::swap(a, b), std::swap(ia, ib);
   Contact k;
   const bool continuing = std::binary_search(previous_.begin(), previous_.end(), contact_key(a, b, false));
+  Pending q;
+  q.k.a = -1;
   if (!moving_pair(w, a, b, c0_[ia], c1_[ia], r_sphere_[ia], r_bound_[ia], c0_[ib], c1_[ib], r_sphere_[ib],
-                   r_bound_[ib], continuing, k, L))
+                   r_bound_[ib], continuing, k, L, opt_.tier == Tier::Auto ? &q : nullptr)) {
+    if (q.k.a >= 0) {  // deferred to allocate_tiers
+      q.ia = static_cast<uint32_t>(ia), q.ib = static_cast<uint32_t>(ib);
+      L.pending.push_back(q);
+    }
     return;
+  }
   L.touching.push_back(contact_key(a, b, false));
+  L.candidates.push_back(k);
+}
+
+void Detector::decide_pending(const world::World& w, size_t p, Lane& L) {
+  const Pending& q = pending_[p];
+  Contact k = q.k;
+  if (q.tier == Tier::Sphere) {  // the thesis spheres swept: what the sphere tier finds
+    const int b = k.b;
+    const Vec3 cb0 = k.b_fixed ? world::fixed_centre(w, b) : c0_[q.ib];
+    const Vec3 cb1 = k.b_fixed ? cb0 : c1_[q.ib];
+    const double rb = k.b_fixed ? world::fixed_radius(w, b) : r_sphere_[q.ib];
+    const Trace h = sphere_sweep(c0_[q.ia], c1_[q.ia], r_sphere_[q.ia], cb0, cb1, rb);
+    ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
+    if (!h.hit) return;
+    static_cast<Trace&>(k) = h;
+    k.method = method_of(Tier::Sphere, k.b_fixed);
+    k.tier = tier_name(Tier::Sphere);
+  } else if (!narrow(w, k.a, k.b, k.b_fixed, q.tier, q.t_in, q.t_out, k, L)) {
+    return;
+  }
+  L.touching.push_back(contact_key(k.a, k.b, k.b_fixed));
   L.candidates.push_back(k);
 }
 
@@ -329,6 +372,17 @@ void Detector::detect_continuous(const world::World& w) {
   merge_lanes(chunked(jobs_, pairs_.size(), kPairGrain, [&](int c, size_t p0, size_t p1) {
     for (size_t p = p0; p < p1; ++p) pair_contact(w, p, lanes_[c]);
   }));
+
+  // Auto tier: the pairs that need a narrow phase get their tier from the scene and the budget
+  // (scene_tiers.cpp), then are decided.
+  choices_.clear();
+  if (!pending_.empty()) {
+    allocate_tiers(w);
+    merge_lanes(chunked(jobs_, pending_.size(), kPendingGrain, [&](int c, size_t p0, size_t p1) {
+      for (size_t p = p0; p < p1; ++p) decide_pending(w, p, lanes_[c]);
+    }));
+    pending_.clear();
+  }
 
   // Deterministic order: time of impact, then the id ranks (not the storage order).
   const auto& rank = rank_.ranks();

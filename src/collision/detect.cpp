@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <string_view>
 
 #include "collision/collision.hpp"
 #include "core/constants.hpp"
@@ -65,6 +66,7 @@ void Detector::detect_thesis(const world::World& w) {
       k.normal = d.norm() > 1e-9 ? Vec3(d.normalized()) : Vec3::UnitX();
       k.point = c + k.normal * std::min(r, d.norm());
       k.method = "sphere-fixed";
+      k.tier = "sphere";
       candidates_.push_back(k);
     });
   }
@@ -115,6 +117,7 @@ void Detector::detect_thesis(const world::World& w) {
       k.normal = d.norm() > 1e-9 ? Vec3(d.normalized()) : Vec3::UnitX();
       k.point = p;
       k.method = method;
+      k.tier = method == std::string_view("L3-haines") ? "mesh" : "sphere";  // L3: the polygons
       candidates_.push_back(k);
     }
   }

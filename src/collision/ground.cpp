@@ -7,7 +7,7 @@ namespace npsnet::collision {
 void ground_contact(const world::World& w, int e, const Vec3& point, double speed_mps, world::Changes& out) {
   const world::Kind& k = w.kinds[w.ents.kind[e]];
   world::CollisionRecord rec;
-  rec.a = e, rec.b = -1, rec.b_fixed = false, rec.point = point, rec.method = "terrain";
+  rec.a = e, rec.b = -1, rec.b_fixed = false, rec.point = point, rec.method = "terrain", rec.tier = "terrain";
   rec.closing_speed_mps = speed_mps;
   const Vec3& v = w.ents.vel[e];
   rec.angle_deg = v.norm() > 1e-9 ? rad2deg(std::asin(std::min(1.0, std::abs(v.z()) / v.norm()))) : 0.0;

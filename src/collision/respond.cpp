@@ -40,7 +40,7 @@ Vec3 rewind(const Contact& c, const Vec3& from, const Vec3& to) {
 // Munition contact: "the only response is an explosion" (p. 21).
 void munition_contact(const world::World& w, const Contact& c, int mun, int other, world::Changes& out) {
   world::CollisionRecord rec;
-  rec.a = c.a, rec.b = c.b, rec.b_fixed = c.b_fixed, rec.point = c.point, rec.method = c.method;
+  rec.a = c.a, rec.b = c.b, rec.b_fixed = c.b_fixed, rec.point = c.point, rec.method = c.method, rec.tier = c.tier;
   rec.closing_speed_mps = w.ents.vel[mun].norm();
   rec.angle_deg = c.b_fixed ? 0 : impact_angle_deg(w.ents.heading_deg[c.a], w.ents.heading_deg[c.b]);
   (mun == c.a ? rec.result_a : rec.result_b) = Result::Explode;
@@ -57,7 +57,7 @@ void vehicle_vs_fixed(const world::World& w, const Contact& c, world::Changes& o
   const world::Kind& kf = w.kinds[w.fixed.kind[c.b]];
   const double speed = ents.vel[c.a].norm();
   world::CollisionRecord rec;
-  rec.a = c.a, rec.b = c.b, rec.b_fixed = true, rec.point = c.point, rec.method = c.method;
+  rec.a = c.a, rec.b = c.b, rec.b_fixed = true, rec.point = c.point, rec.method = c.method, rec.tier = c.tier;
   rec.closing_speed_mps = std::max(0.0, ents.vel[c.a].dot(c.normal));
   rec.angle_deg = impact_angle_deg(ents.heading_deg[c.a], dir_to_heading(c.normal.head<2>()));
   // Fixed object: damage graded by the vehicle's momentum (p. 20: "based upon the speed and mass
@@ -123,7 +123,7 @@ bool vehicle_vs_vehicle_band(const world::World& w, const Contact& c, world::Cha
   const int a = c.a, b = c.b;
   const world::Kind& ka = w.kinds[ents.kind[a]];
   const world::Kind& kb = w.kinds[ents.kind[b]];
-  rec.a = a, rec.b = b, rec.point = c.point, rec.method = c.method;
+  rec.a = a, rec.b = b, rec.point = c.point, rec.method = c.method, rec.tier = c.tier;
   const Vec3 rel = ents.vel[a] - ents.vel[b];
   rec.closing_speed_mps = std::max(0.0, rel.dot(c.normal));
   rec.angle_deg = impact_angle_deg(ents.heading_deg[a], ents.heading_deg[b]);

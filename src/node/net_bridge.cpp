@@ -276,6 +276,7 @@ void NetBridge::on_collision(const net::CollisionPdu& p) {
   rec.closing_speed_mps = std::max(0.0, (v_other - ents.vel[own]).dot(n));
   rec.angle_deg = collision::impact_angle_deg(ents.heading_deg[rec.a], ents.heading_deg[rec.b]);
   rec.method = "network";
+  rec.tier = "network";
   rec.result_a = rec.result_b = res;
   inject_.clear();
   inject_.collisions.push_back(rec);

@@ -19,6 +19,7 @@ double round3(double v) { return std::round(v * 1000.0) / 1000.0; }
 Simulation::Simulation(world::World w, const world::Scenario& s, EventLog& log, double dt)
     : w_(std::move(w)), log_(log), dt_(dt) {
   detector_ = collision::Detector(collision::options_from(s.collision_method, s.collision_tier, dt));
+  detector_.set_budget_ms(s.collision_budget_ms);
   for (const auto& f : s.fires) {
     Scheduled sc{f.t_s, find_entity(f.shooter), w_.kinds.find(f.munition), -1, -1, Vec3::Zero(), f.target};
     if (f.target_m) {
@@ -116,6 +117,7 @@ void Simulation::log_changes() {
     ev["closing_speed_mps"] = round3(c.closing_speed_mps);
     ev["angle_deg"] = round3(c.angle_deg);
     ev["method"] = c.method;
+    ev["tier"] = c.tier;
     ev["outcome_a"] = world::result_name(c.result_a);
     ev["outcome_b"] = world::result_name(c.result_b);
     log_.write(ev);

@@ -60,6 +60,9 @@ class Simulation {
   // time. Scheduled fires before t that have not happened go at the next tick.
   void set_time(double t);
   const collision::DetectStats& stats() const { return detector_.stats(); }
+  // The viewers' view volumes (the player's camera, ...): pairs seen get the exact tier (auto).
+  void set_views(const std::vector<collision::ViewVolume>& v) { detector_.set_views(v); }
+  const collision::Detector& detector() const { return detector_; }
   // Every crater made so far (local and remote rounds), in order (--state-out).
   const std::vector<world::Crater>& craters() const { return craters_; }
   std::function<void(const TickReport&)> on_tick;  // renderer, snapshots, network

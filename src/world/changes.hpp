@@ -65,6 +65,8 @@ struct CollisionRecord {
   Vec3 point{0, 0, 0};
   double closing_speed_mps = 0, angle_deg = 0;
   const char* method = "";    // a string literal (no allocation per record)
+  const char* tier = "";      // the shape tier that decided it: sphere, box, hull, mesh (thesis L3:
+                              // mesh, its polygons); terrain (ground); network (another node's)
   Result result_a = Result::None, result_b = Result::None;
 };
 

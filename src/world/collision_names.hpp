@@ -18,6 +18,9 @@ std::optional<CollisionMethod> collision_method_from_name(std::string_view s);  
 std::optional<ShapeTier> shape_tier_from_name(std::string_view s);  // "capsule" is a name for Box
 const char* collision_method_name(CollisionMethod m);
 const char* shape_tier_name(ShapeTier t);
+// collision_budget_ms (scenario): the modelled narrow-phase time the auto tier may spend per tick
+// (collision/collision.hpp, scene-aware tiers). Default: a quarter of a 60 Hz frame (16.7 ms).
+inline constexpr double kDefaultCollisionBudgetMs = 1000.0 / 60.0 / 4.0;
 // For messages: the names each field accepts.
 inline constexpr const char* kCollisionMethodChoices = "must be \"continuous\" or \"thesis\"";
 inline constexpr const char* kShapeTierChoices = "must be one of auto, sphere, capsule, box, hull, mesh";

@@ -45,7 +45,7 @@ Scenario load_scenario_text(std::string_view text, const std::filesystem::path& 
   s.file = file;
   const auto dir = file.parent_path();
   r.unknown_keys(root, "", {"duration_s", "world", "vehicle", "fixed", "fire", "background", "collision_method",
-                          "collision_tier"});
+                          "collision_tier", "collision_budget_ms"});
   if (auto v = r.number(root, "duration_s", "duration_s", false, 0)) {
     if (*v <= 0) r.problem(root.get("duration_s"), "duration_s", "must be positive");
     else if (*v > kMaxDurationS) r.problem(root.get("duration_s"), "duration_s", range_message(0, kMaxDurationS, "s", *v));
@@ -56,6 +56,8 @@ Scenario load_scenario_text(std::string_view text, const std::filesystem::path& 
       r.problem(root.get("collision_method"), "collision_method", std::string(kCollisionMethodChoices) + " (got '" + *m + "')");
     s.collision_method = *m;
   }
+  if (auto b = r.number_in(root, "collision_budget_ms", "collision_budget_ms", false, 0, 0, 1e6))
+    s.collision_budget_ms = *b;
   if (auto m = r.string(root, "collision_tier", "collision_tier", false, 0)) {
     if (!shape_tier_from_name(*m))
       r.problem(root.get("collision_tier"), "collision_tier", std::string(kShapeTierChoices) + " (got '" + *m + "')");

@@ -57,6 +57,8 @@ struct Scenario {
   // pair takes the cheapest tier that decides it). collision/collision.hpp parses both.
   std::string collision_method = "continuous";
   std::string collision_tier = "auto";
+  // The auto tier's per-tick budget of modelled narrow-phase time (ms, >= 0; collision.hpp).
+  double collision_budget_ms = kDefaultCollisionBudgetMs;
   std::vector<VehicleSpec> vehicles;
   std::vector<FixedSpec> fixed;
   std::vector<FireSpec> fires;

@@ -1,0 +1,63 @@
+// The scene-aware auto tier (collision.hpp): which tier each pair that needs a narrow phase gets
+// this tick, from the scene (driven, snapshotted, seen) and the budget of modelled time.
+#include <algorithm>
+
+#include "collision/collision.hpp"
+#include "world/pose.hpp"
+
+namespace npsnet::collision {
+
+ViewVolume ViewVolume::box(const Vec3& lo, const Vec3& hi) {
+  ViewVolume v;
+  v.eye = 0.5 * (lo + hi);
+  const Vec3 half = 0.5 * (hi - lo);
+  for (int k = 0; k < 3; ++k) {
+    Eigen::Vector4d p = Eigen::Vector4d::Zero();
+    p[k] = 1, p[3] = half[k];  // x_k - eye_k >= -half_k
+    v.planes[2 * k] = p;
+    p[k] = -1;                 // eye_k - x_k >= -half_k
+    v.planes[2 * k + 1] = p;
+  }
+  return v;
+}
+
+void Detector::allocate_tiers(const world::World& w) {
+  const auto& ents = w.ents;
+  // Required: a driven or snapshotted vehicle, or a body seen by a viewer.
+  for (Pending& q : pending_) {
+    const int a = q.k.a, b = q.k.b;
+    bool req = ents.driven[a] || ents.snapshots[a] || (!q.k.b_fixed && (ents.driven[b] || ents.snapshots[b]));
+    for (size_t v = 0; v < views_.size() && !req; ++v) {
+      const ViewVolume& vv = views_[v];
+      req = vv.sphere_inside(c1_[q.ia], r_bound_[q.ia]) ||
+            (q.k.b_fixed ? vv.sphere_inside(world::fixed_centre(w, b), fixed_r_[b]) : vv.sphere_inside(c1_[q.ib], r_bound_[q.ib]));
+    }
+    q.required = req;
+  }
+  // Most important first: required, then the faster closing, then the id order.
+  const auto& rank = rank_.ranks();
+  const auto& fixed_rank = fixed_rank_.ranks();
+  pending_order_.resize(pending_.size());
+  for (uint32_t i = 0; i < pending_order_.size(); ++i) pending_order_[i] = i;
+  std::sort(pending_order_.begin(), pending_order_.end(), [&](uint32_t i, uint32_t j) {
+    const Pending &x = pending_[i], &y = pending_[j];
+    if (x.required != y.required) return x.required;
+    if (x.closing != y.closing) return x.closing > y.closing;
+    if (rank[x.k.a] != rank[y.k.a]) return rank[x.k.a] < rank[y.k.a];
+    if (x.k.b_fixed != y.k.b_fixed) return x.k.b_fixed < y.k.b_fixed;
+    return x.k.b_fixed ? fixed_rank[x.k.b] < fixed_rank[y.k.b] : rank[x.k.b] < rank[y.k.b];
+  });
+  double left_us = opt_.budget_ms * 1000.0;
+  for (uint32_t i : pending_order_) {
+    Pending& q = pending_[i];
+    Tier t = q.exact;
+    if (!q.required)
+      while (t > Tier::Sphere && kTierCostUs[static_cast<int>(t)] > left_us) t = static_cast<Tier>(static_cast<int>(t) - 1);
+    q.tier = t;
+    left_us -= kTierCostUs[static_cast<int>(t)];
+    if (t < q.exact) ++stats_.tier_lowered;
+    choices_.push_back({q.k.a, q.k.b, q.k.b_fixed, q.required, q.exact, t});
+  }
+}
+
+}  // namespace npsnet::collision

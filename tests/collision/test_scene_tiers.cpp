@@ -1,0 +1,127 @@
+// The scene-aware auto tier (collision.hpp, issue 13): the tier a pair gets changes with the
+// budget and with what the scene needs (a viewer sees it, a driven or snapshotted vehicle), and a
+// budgeted crowd never misses a contact the sphere tier finds.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <set>
+#include <tuple>
+
+#include "collision/collision.hpp"
+#include "support/fixture.hpp"
+
+using namespace npsnet;
+using collision::Tier;
+
+namespace {
+
+// Two background tanks (no snapshots) closing head-on at 20 m/s; their hulls overlap this tick.
+world::World head_on() {
+  world::World w = test::flat_world();
+  const int a = test::add_vehicle(w, "bga", "m1a1", 1000.0, 1000.0, 90.0, 10.0);
+  const int b = test::add_vehicle(w, "bgb", "m1a1", 1009.0, 1000.0, 270.0, 10.0);
+  w.ents.snapshots[a] = w.ents.snapshots[b] = 0;
+  test::index_fixed(w);
+  return w;
+}
+
+struct Decision {
+  Tier chosen = Tier::Auto;
+  bool required = false;
+  std::string tier;  // of the contact, "" = none
+};
+
+Decision decide(const world::World& w, double budget_ms, const std::vector<collision::ViewVolume>& views = {}) {
+  collision::Detector det(collision::options_from("continuous", "auto", 0.1));
+  det.set_budget_ms(budget_ms);
+  det.set_views(views);
+  std::vector<collision::Contact> out;
+  det.detect(w, out);
+  Decision d;
+  EXPECT_EQ(det.tier_choices().size(), 1u);
+  if (!det.tier_choices().empty()) d.chosen = det.tier_choices()[0].chosen, d.required = det.tier_choices()[0].required;
+  if (!out.empty()) d.tier = out[0].tier;
+  return d;
+}
+
+}  // namespace
+
+TEST(SceneTiers, TheBudgetLowersTheTierOfAPairNobodyWatches) {
+  const world::World w = head_on();
+  Decision d = decide(w, 10.0);  // room for the mesh (164 us modelled)
+  EXPECT_EQ(d.chosen, Tier::Mesh);
+  EXPECT_EQ(d.tier, "mesh");
+  d = decide(w, 0.1);  // 100 us: the hull (49.5 us) fits, the mesh does not
+  EXPECT_EQ(d.chosen, Tier::Hull);
+  EXPECT_EQ(d.tier, "hull");
+  d = decide(w, 0.0);  // nothing left: the thesis spheres decide
+  EXPECT_EQ(d.chosen, Tier::Sphere);
+  EXPECT_EQ(d.tier, "sphere");
+  EXPECT_FALSE(d.required);
+}
+
+TEST(SceneTiers, APairInAViewerFrustumOrWithADrivenOrSnapshottedVehicleGetsTheExactTier) {
+  world::World w = head_on();
+  const auto seen = collision::ViewVolume::box(Vec3(950, 950, 0), Vec3(1050, 1050, 300));
+  const auto elsewhere = collision::ViewVolume::box(Vec3(1500, 1500, 0), Vec3(1600, 1600, 300));
+  Decision d = decide(w, 0.0, {seen});
+  EXPECT_TRUE(d.required);
+  EXPECT_EQ(d.chosen, Tier::Mesh);
+  EXPECT_EQ(d.tier, "mesh");
+  d = decide(w, 0.0, {elsewhere});
+  EXPECT_FALSE(d.required);
+  EXPECT_EQ(d.chosen, Tier::Sphere);
+  w.ents.driven[1] = 1;
+  EXPECT_EQ(decide(w, 0.0).chosen, Tier::Mesh);
+  w.ents.driven[1] = 0;
+  w.ents.snapshots[0] = 1;
+  EXPECT_EQ(decide(w, 0.0).chosen, Tier::Mesh);
+}
+
+TEST(SceneTiers, TheBudgetedCrowdNeverMissesASphereTierContact) {
+  world::World w = test::flat_world();
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int i = 0; i < 800; ++i) {
+    const int e = test::add_vehicle(w, "bg" + std::to_string(i), i % 2 ? "bmp" : "m1a1", 700 + 500 * u(rng),
+                                    700 + 500 * u(rng), 360 * u(rng), 5 + 10 * u(rng));
+    w.ents.snapshots[e] = 0;
+  }
+  test::index_fixed(w);
+  using Key = std::tuple<int, int, bool>;
+  auto contacts = [&](const char* tier, double budget_ms, std::vector<collision::TierChoice>* choices) {
+    collision::Detector det(collision::options_from("continuous", tier, 0.1));
+    det.set_budget_ms(budget_ms);
+    std::vector<collision::Contact> out;
+    det.detect(w, out);
+    if (choices) *choices = det.tier_choices();
+    std::set<Key> keys;
+    for (const auto& c : out) keys.insert({std::min(c.a, c.b), std::max(c.a, c.b), c.b_fixed});
+    return keys;
+  };
+  const std::set<Key> sphere = contacts("sphere", 0, nullptr);
+  ASSERT_GT(sphere.size(), 20u) << "the crowd should touch";
+  // No budget at all: every pair is decided by the sphere tier, and so the same contacts.
+  std::vector<collision::TierChoice> choices;
+  EXPECT_EQ(contacts("auto", 0.0, &choices), sphere);
+  for (const auto& c : choices) EXPECT_EQ(c.chosen, Tier::Sphere);
+  // Some budget: the most important pairs go up their tiers, the rest stay at the sphere tier and
+  // keep every contact the sphere tier finds.
+  const std::set<Key> some = contacts("auto", 1.0, &choices);
+  int lowered = 0, exact = 0;
+  std::set<Key> at_sphere;
+  for (const auto& c : choices) {
+    if (c.chosen == Tier::Sphere) at_sphere.insert({std::min(c.a, c.b), std::max(c.a, c.b), c.b_fixed});
+    lowered += c.chosen < c.exact;
+    exact += c.chosen == c.exact;
+  }
+  EXPECT_GT(lowered, 0);
+  EXPECT_GT(exact, 0);
+  for (const Key& k : sphere)
+    if (at_sphere.count(k)) {
+      EXPECT_TRUE(some.count(k)) << "missed a sphere-tier contact";
+    }
+  // An ample budget: every pair at its exact tier (today's auto).
+  contacts("auto", 1e6, &choices);
+  for (const auto& c : choices) EXPECT_EQ(c.chosen, c.exact);
+}
