@@ -144,6 +144,10 @@ asio::ip::udp::socket& UdpTransport::Impl::open_socket() {
   const int on = 1;
   (void)::setsockopt(s.native_handle(), SOL_SOCKET, SO_RXQ_OVFL, &on, sizeof on);
 #endif
+  // Each datagram's destination address (the group it was sent to) with every datagram read.
+  const int pktinfo = 1;
+  if (::setsockopt(s.native_handle(), IPPROTO_IP, IP_PKTINFO, &pktinfo, sizeof pktinfo) != 0)
+    fail("cannot set IP_PKTINFO for " + where, asio::error_code(errno, asio::error::get_system_category()));
   joined_per_socket.push_back(0);
   kernel_drops.push_back(0);
   return sockets.emplace_back(std::move(s));
@@ -262,7 +266,7 @@ std::optional<std::span<const std::uint8_t>> UdpTransport::receive(UdpSource& so
     const std::size_t i = (m.next_rx + k) % n_sockets;
     sockaddr_in from{};
     iovec iov{m.buffer.data(), m.buffer.size()};
-    alignas(cmsghdr) std::array<char, CMSG_SPACE(sizeof(std::uint32_t))> control{};
+    alignas(cmsghdr) std::array<char, CMSG_SPACE(sizeof(std::uint32_t)) + CMSG_SPACE(sizeof(in_pktinfo))> control{};
     msghdr msg{};
     msg.msg_name = &from;
     msg.msg_namelen = sizeof from;
@@ -277,15 +281,22 @@ std::optional<std::span<const std::uint8_t>> UdpTransport::receive(UdpSource& so
       continue;
     }
     const auto n = static_cast<std::size_t>(got);
-#ifdef SO_RXQ_OVFL
+    source.destination = 0;
     for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c; c = CMSG_NXTHDR(&msg, c)) {
+      if (c->cmsg_level == IPPROTO_IP && c->cmsg_type == IP_PKTINFO) {
+        in_pktinfo info{};
+        std::memcpy(&info, CMSG_DATA(c), sizeof info);
+        source.destination = ntohl(info.ipi_addr.s_addr);  // the header's destination address
+        continue;
+      }
+#ifdef SO_RXQ_OVFL
       if (c->cmsg_level != SOL_SOCKET || c->cmsg_type != SO_RXQ_OVFL) continue;
       std::uint32_t dropped = 0;
       std::memcpy(&dropped, CMSG_DATA(c), sizeof dropped);
       m.kernel_drops_total += static_cast<std::uint32_t>(dropped - m.kernel_drops[i]);  // wraps at 2^32
       m.kernel_drops[i] = dropped;
-    }
 #endif
+    }
     m.next_rx = i;  // drain this socket first next time
     source.address = from.sin_family == AF_INET ? ntohl(from.sin_addr.s_addr) : 0;
     source.port = ntohs(from.sin_port);
@@ -297,6 +308,9 @@ std::optional<std::span<const std::uint8_t>> UdpTransport::receive(UdpSource& so
 std::uint64_t UdpTransport::dropped_by_kernel() const noexcept { return impl_->kernel_drops_total; }
 
 int UdpTransport::native_handle() const noexcept { return impl_->sockets.front().native_handle(); }
+int UdpTransport::native_handle(std::size_t i) const noexcept {
+  return i < impl_->sockets.size() ? impl_->sockets[i].native_handle() : -1;
+}
 
 const UdpUrl& UdpTransport::destination() const noexcept { return impl_->url; }
 const std::string& UdpTransport::iface() const noexcept { return impl_->iface; }

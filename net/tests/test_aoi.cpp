@@ -7,6 +7,7 @@
 #include <arpa/inet.h>
 
 #include <chrono>
+#include <map>
 #include <random>
 #include <set>
 #include <thread>
@@ -218,4 +219,44 @@ TEST(AoiTransport, OneGroupTransportDoesNotJoinMore) {
   EXPECT_FALSE(s.join_group(ip("239.1.2.4")));
   EXPECT_EQ(s.counters().aoi_join_failures, 1u);
   EXPECT_NE(s.transport().last_error().find("many-groups"), std::string::npos);
+}
+
+// A recorder holding many groups on one transport must write each datagram's true destination:
+// receive(from) gives it (IP_PKTINFO), for the many-groups sockets and for a one-group transport.
+TEST(AoiTransport, ReceiveGivesEachDatagramsDestinationGroup) {
+  const std::uint16_t port = test_port(1);
+  const auto g = grid("239.78.0.0", 1000.0, 64);
+  net::TransportConfig rc;
+  rc.url = "udp://239.78.0.0:" + std::to_string(port);
+  rc.iface = "127.0.0.1";
+  rc.join_destination = false;
+  net::UdpTransport rx(rc);
+  constexpr std::uint32_t kJoined = 30;  // more than one socket holds (igmp_max_memberships 20)
+  for (std::uint32_t k = 0; k < kJoined; ++k) ASSERT_TRUE(rx.join(g.address(k))) << rx.last_error();
+  std::vector<int> fds;
+  for (std::size_t i = 0; i < rx.socket_count(); ++i) fds.push_back(rx.native_handle(i));
+  EXPECT_EQ(fds.front(), rx.native_handle());
+  EXPECT_EQ(std::set<int>(fds.begin(), fds.end()).size(), rx.socket_count()) << "one descriptor per socket";
+  net::TransportConfig one;
+  one.url = "udp://" + g.address_text(7) + ":" + std::to_string(port);
+  one.iface = "127.0.0.1";
+  net::UdpTransport rx_one(one);
+  net::UdpTransport tx(rc);
+  // Datagram k (one octet, k) to group k; the one-group transport hears only group 7.
+  for (std::uint32_t k = 0; k < kJoined; ++k) {
+    const std::uint8_t b = static_cast<std::uint8_t>(k);
+    ASSERT_TRUE(tx.send_to(g.address(k), std::span<const std::uint8_t>(&b, 1))) << tx.last_error();
+  }
+  std::map<std::uint32_t, std::uint32_t> dest;  // payload octet -> destination heard
+  std::vector<std::uint32_t> one_dest;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (std::chrono::steady_clock::now() < deadline && (dest.size() < kJoined || one_dest.empty())) {
+    net::UdpSource from;
+    while (auto d = rx.receive(from)) dest[(*d)[0]] = from.destination;
+    while (auto d = rx_one.receive(from)) one_dest.push_back(from.destination);
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  ASSERT_EQ(dest.size(), kJoined);
+  for (const auto& [k, to] : dest) EXPECT_EQ(to, g.address(k)) << "datagram " << k;
+  EXPECT_EQ(one_dest, std::vector<std::uint32_t>{g.address(7)});
 }

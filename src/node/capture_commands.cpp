@@ -20,8 +20,16 @@ void add_capture_commands(CLI::App& app, CaptureOptions& o) {
   rec->add_option("--iface", o.iface, "local address the group is joined on (default 127.0.0.1)");
   rec->add_option("--exercise", o.exercise, "write only datagrams of this exercise id")->check(CLI::Range(1, 255));
   rec->add_option("--seconds", o.seconds, "stop after S seconds (default: at SIGINT/SIGTERM)")->check(CLI::PositiveNumber);
+  auto* aoi = rec->add_flag("--aoi", o.aoi,
+                            "also join every area-of-interest cell group of `run --aoi CELL_M` (any CELL_M): the "
+                            "--aoi-groups groups from the --net group up");
+  rec->add_option("--aoi-groups", o.aoi_groups, "with --aoi: the nodes' --aoi-groups N (default 1024)")
+      ->check(CLI::Range(1, 65536))
+      ->needs(aoi);
   rec->footer("Ends cleanly on Ctrl-C / SIGTERM; flushed every 0.1 s, so a killed recorder leaves a readable file.\n"
-              "Example: npsnet record --net udp://239.1.2.3:3000 --iface 127.0.0.1 --seconds 60 exercise.pcap");
+              "Each frame's IP destination is the group the datagram was sent to.\n"
+              "Example: npsnet record --net udp://239.1.2.3:3000 --iface 127.0.0.1 --seconds 60 exercise.pcap\n"
+              "         npsnet record --aoi --net udp://239.1.2.3:3000 --iface 127.0.0.1 aoi-exercise.pcap");
   auto* rep = app.add_subcommand("replay", "send a recorded exercise (pcap) into an exercise at its recorded pace");
   rep->add_option("IN", o.file, "pcap or pcapng file")->required();
   rep->add_option("--net", o.net, "destination udp://ADDR:PORT (default 239.1.2.3:3000)");
@@ -58,8 +66,7 @@ net::TransportConfig transport(const CaptureOptions& o) {
 int record_command(const CaptureOptions& o) {
   record::RecordOptions r;
   r.groups.push_back(transport(o));
-  // --aoi (shared/ARCHITECTURE.md): push one transport per cell group here, and every group is
-  // joined and recorded.
+  r.aoi_groups = o.aoi ? o.aoi_groups : 0;  // every cell group too (record/recorder.hpp)
   r.exercise = o.exercise;
   r.seconds = o.seconds;
   r.out = o.file;
@@ -72,7 +79,9 @@ int record_command(const CaptureOptions& o) {
     return 2;
   }
   catch_stop_signals();
-  std::fprintf(stderr, "npsnet record: joined %s on %s, writing %s\n", o.net.c_str(), o.iface.c_str(), o.file.string().c_str());
+  std::fprintf(stderr, "npsnet record: joined %s%s on %s, writing %s\n", o.net.c_str(),
+               o.aoi ? (" and its cell groups (" + std::to_string(rec->groups_joined()) + " groups)").c_str() : "",
+               o.iface.c_str(), o.file.string().c_str());
   rec->run();
   std::printf("%s\n", rec->summary().c_str());
   return 0;

@@ -15,6 +15,8 @@ namespace npsnet::node {
 struct CaptureOptions {
   std::string net = "udp://239.1.2.3:3000", iface = "127.0.0.1";
   std::optional<int> exercise;
+  bool aoi = false;       // record: also every area-of-interest cell group
+  int aoi_groups = 1024;  // record --aoi: the N of `run --aoi-groups`
   double seconds = 0;  // record: 0 = until SIGINT/SIGTERM
   double speed = 1.0;  // replay
   std::optional<double> from_s, to_s;

@@ -155,7 +155,8 @@ int run_command(const RunOptions& opt) {
   int first_driven = -1;
   if (has_player) {
     try {
-      first_driven = Player::first_vehicle(w, o.node, !net_on, o.drive, script, o.input.string());
+      // Networked or replayed, other nodes' vehicles are remote: only this node's can be driven.
+      first_driven = Player::first_vehicle(w, o.node, !net_on && !replay_on, o.drive, script, o.input.string());
     } catch (const world::InputError& e) {
       print_problems(e);
       return 2;

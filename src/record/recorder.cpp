@@ -1,5 +1,7 @@
 #include "record/recorder.hpp"
 
+#include "net/aoi.hpp"
+
 #include <arpa/inet.h>
 #include <poll.h>
 
@@ -23,10 +25,26 @@ std::uint32_t addr_of(const std::string& dotted_text) {
 
 Recorder::Recorder(const RecordOptions& o) : opt_(o) {
   if (opt_.groups.empty()) throw std::runtime_error("no group to record");
-  for (const auto& g : opt_.groups) {
-    net::TransportConfig c = g;
+  if (opt_.aoi_groups > 0) {
+    if (opt_.groups.size() != 1) throw std::runtime_error("--aoi records one exercise: give one --net group");
+    const auto url = net::parse_udp_url(opt_.groups[0].url);
+    if (!url) throw std::runtime_error(url.error());
+    const auto cells = net::aoi_all_groups(url.value().address, opt_.aoi_groups);  // cell group 0 = the exercise's
+    if (!cells) throw std::runtime_error(cells.error());
+    net::TransportConfig c = opt_.groups[0];
+    c.join_destination = false;
     c.max_datagrams_per_poll = 1 << 16;
-    socks_.emplace_back(c);  // throws with the reason (bad URL, iface, bind, join)
+    auto& t = socks_.emplace_back(c);  // throws with the reason (bad URL, iface, bind)
+    for (const auto& g : cells.value())
+      if (!t.join(addr_of(g))) throw std::runtime_error("--aoi: " + t.last_error());
+    groups_joined_ = t.groups_joined();
+  } else {
+    for (const auto& g : opt_.groups) {
+      net::TransportConfig c = g;
+      c.max_datagrams_per_poll = 1 << 16;
+      socks_.emplace_back(c);  // throws with the reason (bad URL, iface, bind, join)
+      ++groups_joined_;
+    }
   }
   writer_ = std::make_unique<PcapWriter>(opt_.out);
   stop_ = false;
@@ -39,11 +57,10 @@ void Recorder::stop() noexcept { stop_ = true; }
 void Recorder::run() {
   const auto t0 = std::chrono::steady_clock::now();
   auto since = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  std::vector<pollfd> fds(socks_.size());
-  std::vector<std::uint32_t> group(socks_.size());
+  std::vector<pollfd> fds;  // every socket of every transport (a many-groups one has several)
+  std::vector<std::uint32_t> group(socks_.size());  // the destination when IP_PKTINFO gave none
   for (std::size_t i = 0; i < socks_.size(); ++i) {
-    fds[i].fd = socks_[i].native_handle();
-    fds[i].events = POLLIN;
+    for (std::size_t k = 0; k < socks_[i].socket_count(); ++k) fds.push_back({socks_[i].native_handle(k), POLLIN, 0});
     group[i] = addr_of(socks_[i].destination().address);
     if (socks_[i].destination().mode != net::UdpMode::Multicast) group[i] = addr_of(socks_[i].iface());
   }
@@ -66,9 +83,9 @@ void Recorder::run() {
         }
         UdpPacket p;
         p.src_addr = from.address, p.src_port = from.port;
-        p.dst_addr = group[i], p.dst_port = socks_[i].destination().port;
+        p.dst_addr = from.destination ? from.destination : group[i], p.dst_port = socks_[i].destination().port;
         p.payload = *d;
-        if (writer_->write(t, p)) tally_.add(*d, writer_->frames());
+        if (writer_->write(t, p)) tally_.add(*d, writer_->frames()), ++per_destination_[p.dst_addr];
       }
     }
     if (since() - last_flush >= opt_.flush_s) writer_->flush(), last_flush = since();
@@ -87,7 +104,17 @@ std::string Recorder::summary() const {
                 (unsigned long long)tally_.bytes(), (unsigned long long)writer_->file_bytes(), elapsed_s_,
                 tally_.datagrams() / s, opt_.out.string().c_str(), tally_.by_type_text().c_str(),
                 (unsigned long long)tally_.malformed_total(), (unsigned long long)other_exercise_);
-  return b;
+  std::string out = b;
+  out += "\n  groups: " + std::to_string(groups_joined_) + " joined, " + std::to_string(per_destination_.size()) + " heard";
+  std::size_t listed = 0;
+  for (const auto& [addr, n] : per_destination_) {
+    if (++listed > 8) {
+      out += ", ...";
+      break;
+    }
+    out += (listed == 1 ? ": " : ", ") + dotted(addr) + " (" + std::to_string(n) + ")";
+  }
+  return out;
 }
 
 }  // namespace npsnet::record

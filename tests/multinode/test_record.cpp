@@ -7,7 +7,8 @@
 // that node the same remote entities, collisions, crater and tree state as the live node 3; the
 // killed recorder's file is readable; a cut recording is read up to the cut; a file that is not
 // a capture is refused with exit 2; `run --replay` of the recording as node 1 logs what the live
-// node 1 logged (joins, collisions, crater) and writes the collision snapshots.
+// node 1 logged (joins, collisions, crater) and writes the collision snapshots, and with --drive
+// t1b its start view and periodic frames are t1b's.
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -215,6 +216,42 @@ void AfterActionReviewMatchesTheLiveNode() {
   EXPECT_FALSE(fs::exists(dir / "x.jsonl")) << "nothing written on bad input";
 }
 
+// run --replay --drive t1b: the after-action review looks at the chosen vehicle: the start view
+// and every periodic frame are t1b's (file name, snapshot events, drive event), where the review
+// without --drive (above) showed node 1's first vehicle, t1.
+void AfterActionReviewFollowsTheChosenVehicle() {
+  char s[64];
+  std::snprintf(s, sizeof s, "%.3f", start);
+  const fs::path snaps = dir / "aar_t1b";
+  const auto r = sh(npsnet() + " run --scenario '" + (kData / "record.toml").string() + "' --replay '" +
+                    (dir / "rec.pcap").string() + "' --node 1 --drive t1b --start-at " + s +
+                    " --seconds 7 --snapshot-every 2 --size 320x180 --snapshots '" + snaps.string() + "' --events '" +
+                    (dir / "aar_t1b.jsonl").string() + "' 2>&1");
+  ASSERT_EQ(r.rc, 0) << r.out;
+  EXPECT_TRUE(fs::exists(dir / "aar" / "0000-view-t1-driver.png")) << "without --drive: node 1's first vehicle";
+  EXPECT_TRUE(fs::exists(snaps / "0000-view-t1b-driver.png"));
+  EXPECT_FALSE(fs::exists(snaps / "0000-view-t1-driver.png"));
+  const auto ev = lan::read_events(dir / "aar_t1b.jsonl");
+  const auto drives = of_type(ev, "drive");
+  ASSERT_FALSE(drives.empty());
+  EXPECT_EQ(drives[0]["vehicle"], "t1b");
+  int periodic = 0;
+  for (const auto& e : of_type(ev, "snapshot")) {
+    const std::string file = e["file"];
+    if (file.find("periodic") == std::string::npos) continue;
+    ++periodic;
+    EXPECT_EQ(e["vehicle"], "t1b") << file;
+    EXPECT_EQ(e["camera"], "driver") << file;
+  }
+  EXPECT_EQ(periodic, 4) << "t = 0, 2, 4, 6";
+  // A vehicle that is not this node's cannot be driven: refused, nothing written.
+  const auto bad = sh(npsnet() + " run --scenario '" + (kData / "record.toml").string() + "' --no-render --replay '" +
+                      (dir / "rec.pcap").string() + "' --node 1 --drive a2 --events '" + (dir / "y.jsonl").string() + "' 2>&1");
+  EXPECT_EQ(bad.rc, 2) << bad.out;
+  EXPECT_NE(bad.out.find("'a2' is not a live vehicle of this node"), std::string::npos) << bad.out;
+  EXPECT_FALSE(fs::exists(dir / "y.jsonl"));
+}
+
 void KilledRecorderLeavesAReadableFile() {
   const auto chk = sh(npsnet() + " check '" + (dir / "killed.pcap").string() + "' 2>&1");
   EXPECT_EQ(chk.rc, 0) << chk.out;
@@ -272,6 +309,10 @@ TEST(RecordReplay, LiveExerciseRecordedDecodedReplayedCutAndKilled) {
     AfterActionReviewMatchesTheLiveNode();
   }
   {
+    SCOPED_TRACE("run --replay --drive t1b: the review looks at the chosen vehicle");
+    AfterActionReviewFollowsTheChosenVehicle();
+  }
+  {
     SCOPED_TRACE("a recorder killed half-way leaves a readable file");
     KilledRecorderLeavesAReadableFile();
   }
@@ -279,7 +320,7 @@ TEST(RecordReplay, LiveExerciseRecordedDecodedReplayedCutAndKilled) {
     SCOPED_TRACE("a cut recording is read up to the cut");
     CutRecordingIsReadUpToTheCut();
   }
-  fs::remove_all(dir);
+  if (!std::getenv("NPSNET_KEEP_TEST_FILES")) fs::remove_all(dir);
 }
 
 TEST(RecordReplay, NotACaptureExitsTwo) {

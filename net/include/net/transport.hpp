@@ -20,8 +20,10 @@
 //    opens one more receive socket on the same port and joins there; send_to() always leaves
 //    from the first socket. receive() drains the sockets in turn.
 //  * Nothing here allocates per call: one receive buffer of 65536 octets is kept.
-//  * receive(from) also gives the sender's IPv4 address and port (a recorder writes them into
-//    its pcap); native_handle() is the socket's descriptor, for poll(2) over several sockets.
+//  * receive(from) also gives the sender's IPv4 address and port and the datagram's own IPv4
+//    destination (IP_PKTINFO: the group it was sent to, on whichever socket it arrived), so a
+//    recorder holding many groups writes each frame's true addresses into its pcap;
+//    native_handle(i) is socket i's descriptor, for poll(2) over every socket.
 #pragma once
 
 #include <cstddef>
@@ -54,6 +56,7 @@ Result<UdpUrl, std::string> parse_udp_url(std::string_view url);
 struct UdpSource {
   std::uint32_t address = 0;
   std::uint16_t port = 0;
+  std::uint32_t destination = 0;  // the datagram's IPv4 destination address (IP_PKTINFO); 0 = unknown
 };
 
 struct TransportConfig {
@@ -99,6 +102,8 @@ class UdpTransport {
   // The first socket's file descriptor (to wait on several transports with poll(2); the only
   // socket unless many-groups mode opened more); do not close it.
   int native_handle() const noexcept;
+  // Socket i's descriptor, i < socket_count() (-1 otherwise): poll them all to hear every group.
+  int native_handle(std::size_t i) const noexcept;
 
   // Calls on_datagram(std::span<const std::uint8_t>) for each waiting datagram, at most
   // max_datagrams_per_poll; returns how many.
