@@ -136,6 +136,10 @@ asio::ip::udp::socket& UdpTransport::Impl::open_socket() {
     s.set_option(asio::socket_base::broadcast(true), ec);
     if (ec) fail("cannot set SO_BROADCAST for " + where, ec);
   }
+  if (config.receive_buffer_bytes > 0) {  // a recorder's burst room; capped by net.core.rmem_max
+    s.set_option(asio::socket_base::receive_buffer_size(config.receive_buffer_bytes), ec);
+    if (ec) fail("cannot set SO_RCVBUF for " + where, ec);
+  }
   s.non_blocking(true, ec);
   if (ec) fail("cannot make the socket non-blocking for " + where, ec);
   // The kernel's count of datagrams it dropped because this socket's receive buffer was full
@@ -308,6 +312,12 @@ std::optional<std::span<const std::uint8_t>> UdpTransport::receive(UdpSource& so
 std::uint64_t UdpTransport::dropped_by_kernel() const noexcept { return impl_->kernel_drops_total; }
 
 int UdpTransport::native_handle() const noexcept { return impl_->sockets.front().native_handle(); }
+int UdpTransport::receive_buffer_bytes() const noexcept {
+  asio::error_code ec;
+  asio::socket_base::receive_buffer_size size;
+  impl_->sockets.front().get_option(size, ec);
+  return ec ? 0 : size.value();
+}
 int UdpTransport::native_handle(std::size_t i) const noexcept {
   return i < impl_->sockets.size() ? impl_->sockets[i].native_handle() : -1;
 }

@@ -34,6 +34,7 @@ Recorder::Recorder(const RecordOptions& o) : opt_(o) {
     net::TransportConfig c = opt_.groups[0];
     c.join_destination = false;
     c.max_datagrams_per_poll = 1 << 16;
+    c.receive_buffer_bytes = opt_.receive_buffer_bytes;
     auto& t = socks_.emplace_back(c);  // throws with the reason (bad URL, iface, bind)
     for (const auto& g : cells.value())
       if (!t.join(addr_of(g))) throw std::runtime_error("--aoi: " + t.last_error());
@@ -42,6 +43,7 @@ Recorder::Recorder(const RecordOptions& o) : opt_(o) {
     for (const auto& g : opt_.groups) {
       net::TransportConfig c = g;
       c.max_datagrams_per_poll = 1 << 16;
+      c.receive_buffer_bytes = opt_.receive_buffer_bytes;
       socks_.emplace_back(c);  // throws with the reason (bad URL, iface, bind, join)
       ++groups_joined_;
     }

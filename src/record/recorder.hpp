@@ -37,6 +37,7 @@ struct RecordOptions {
   std::optional<int> exercise;  // write only this exercise id
   double seconds = 0;           // 0: until stop()
   double flush_s = 0.1;         // longest time between two flushes, s
+  int receive_buffer_bytes = 4 << 20;  // per socket: room for a burst (capped by net.core.rmem_max)
   std::filesystem::path out;
 };
 
@@ -52,6 +53,7 @@ class Recorder {
   double elapsed_s() const { return elapsed_s_; }
   const PcapWriter& writer() const { return *writer_; }
   std::size_t groups_joined() const { return groups_joined_; }
+  int receive_buffer_bytes() const { return socks_.front().receive_buffer_bytes(); }  // as granted
   // Datagrams written per destination group (host order address).
   const std::map<std::uint32_t, std::uint64_t>& per_destination() const { return per_destination_; }
   // Several lines: what was recorded, for the end of `npsnet record`.

@@ -67,6 +67,8 @@ struct TransportConfig {
   bool join_destination = true;      // false: many groups, join()/leave() them (see above)
   bool multicast_loopback = true;
   std::size_t max_datagrams_per_poll = 4096;  // bounds one poll() call
+  int receive_buffer_bytes = 0;  // > 0: SO_RCVBUF asked of every socket (the kernel caps it at
+                                 // net.core.rmem_max); 0: the system default
 };
 
 class UdpTransport {
@@ -104,6 +106,8 @@ class UdpTransport {
   int native_handle() const noexcept;
   // Socket i's descriptor, i < socket_count() (-1 otherwise): poll them all to hear every group.
   int native_handle(std::size_t i) const noexcept;
+  // The first socket's receive buffer as the kernel granted it (SO_RCVBUF read back), octets.
+  int receive_buffer_bytes() const noexcept;
 
   // Calls on_datagram(std::span<const std::uint8_t>) for each waiting datagram, at most
   // max_datagrams_per_poll; returns how many.
