@@ -39,12 +39,11 @@ while [ $# -gt 0 ]; do
   esac
   shift
 done
-skip() { echo "faults: SKIP: $*" >&2; exit 77; }
-[ "$(id -u)" -eq 0 ] || skip "needs root (network namespaces)"
-command -v ip >/dev/null || skip "iproute2 'ip' is not installed"
+TOOL=faults
+# shellcheck source=scripts/netns_lib.sh
+source "$ROOT/scripts/netns_lib.sh"
+netns_preflight
 command -v python3 >/dev/null && [ -c /dev/net/tun ] || skip "needs python3 and /dev/net/tun"
-NPSNET="$ROOT/build/npsnet"
-[ -x "$NPSNET" ] || skip "build/npsnet is not built (scripts/build.sh)"
 [ -n "$OUT" ] || OUT=$(mktemp -d /tmp/npsnet-faults.XXXXXX)
 mkdir -p "$OUT"
 
@@ -52,19 +51,14 @@ P="nft$(( $$ % 100000 ))"
 HUB="${P}h"
 PORT=$(( 20000 + $$ % 40000 ))
 SCENARIO="$ROOT/tests/multinode/data/faults.toml"
-NSLIST=()
-SHAPERS=()
-PIDS=()
 cleanup() {
   set +e
-  for pid in "${PIDS[@]}"; do kill -KILL "$pid" 2>/dev/null; wait "$pid" 2>/dev/null; done
-  for pid in "${SHAPERS[@]}"; do kill -TERM "$pid" 2>/dev/null; wait "$pid" 2>/dev/null; done
+  stop_processes
   ip -n "$HUB" link del br0 2>/dev/null
-  for ns in "${NSLIST[@]}"; do ip netns del "$ns" 2>/dev/null; done
+  netns_remove_all
 }
 trap cleanup EXIT
 trap 'exit 1' INT TERM
-newns() { ip netns add "$1"; NSLIST+=("$1"); ip -n "$1" link set lo up; }
 
 newns "$HUB"
 ip -n "$HUB" link add br0 type bridge mcast_snooping 0

@@ -60,29 +60,23 @@ while [ $# -gt 0 ]; do
 done
 case "$NODES" in 1|2|3|4) ;; *) echo "multisite: --nodes must be 1-4" >&2; exit 2 ;; esac
 
-skip() { echo "multisite: SKIP: $*" >&2; exit 77; }
-[ "$(id -u)" -eq 0 ] || skip "needs root (network namespaces)"
-command -v ip >/dev/null || skip "iproute2 'ip' is not installed"
+TOOL=multisite
+# shellcheck source=scripts/netns_lib.sh
+source "$ROOT/scripts/netns_lib.sh"
+netns_preflight
 command -v smcrouted >/dev/null || skip "smcroute is not installed (scripts/install-deps.sh)"
-NPSNET="$ROOT/build/npsnet"
-[ -x "$NPSNET" ] || skip "build/npsnet is not built (scripts/build.sh)"
 
 P="nms$(( $$ % 100000 ))"          # per-run prefix of every namespace
 R="${P}r"
 [ -n "$OUT" ] || OUT=$(mktemp -d /tmp/npsnet-multisite.XXXXXX)
 mkdir -p "$OUT"
 PORT=$(( 20000 + $$ % 40000 ))
-NSLIST=()
-PIDS=()
 DAEMON_PID=""
-SHAPERS=()
 
 cleanup() {
   set +e
-  for pid in "${PIDS[@]}"; do kill -KILL "$pid" 2>/dev/null; done
-  for pid in "${SHAPERS[@]}"; do kill -TERM "$pid" 2>/dev/null; wait "$pid" 2>/dev/null; done
-  [ -n "$DAEMON_PID" ] && kill -TERM "$DAEMON_PID" 2>/dev/null
-  for pid in "${PIDS[@]}" $DAEMON_PID; do wait "$pid" 2>/dev/null; done
+  stop_processes
+  [ -n "$DAEMON_PID" ] && kill -TERM "$DAEMON_PID" 2>/dev/null && wait "$DAEMON_PID" 2>/dev/null
   # Links by name first (a veth takes its peer with it), then the namespaces by name.
   ip -n "$R" link del probe0 2>/dev/null
   for s in 1 2 3; do
@@ -91,12 +85,10 @@ cleanup() {
     ip -n "${P}s$s" link del br0 2>/dev/null
     for k in 1 2 3 4; do ip -n "${P}s$s" link del "n$k" 2>/dev/null; done
   done
-  for ns in "${NSLIST[@]}"; do ip netns del "$ns" 2>/dev/null; done
+  netns_remove_all
 }
 trap cleanup EXIT
 trap 'exit 1' INT TERM
-
-newns() { ip netns add "$1"; NSLIST+=("$1"); ip -n "$1" link set lo up; }
 
 # ---- topology
 newns "$R"

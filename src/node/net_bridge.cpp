@@ -80,6 +80,7 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
   removed_.assign(own_.size(), 0);
   for (size_t i = 0; i < own_.size(); ++i) prev_heading_[i] = ents.heading_deg[own_[i]];
   fixed_net_state_.assign(w.fixed.size(), -1);
+  fixed_slot_.assign(w.fixed.size(), -1);
   for (size_t f = 0; f < w.fixed.size(); ++f) fixed_net_state_[f] = static_cast<int16_t>(w.fixed.state[f]);
   start_s_ = now_s_ = clock_s();
   pack_ = dis_pack_from_env();
@@ -201,8 +202,7 @@ void NetBridge::before_step(world::World& w) {
   if (aoi_) aoi_->update(w, own_, *session_);  // join / leave before draining the socket
   session_->poll_datagrams([&](std::span<const std::uint8_t> d) { receive(d, now_s_); });
   if (source_) source_(now_s_, *this);
-  remotes_.expire(now_s_);
-  remotes_.set_poses(now_s_);
+  remotes_.mirror(now_s_);
 }
 
 void NetBridge::on_cultural(const net::EntityStatePdu& p) {
@@ -217,10 +217,7 @@ void NetBridge::on_cultural(const net::EntityStatePdu& p) {
     fixed_net_state_[o] = static_cast<int16_t>(to);
     // Every node that knows a changed object keeps publishing it (states only go forward, so
     // the highest heard wins): it outlives its first publisher, and a late joiner learns it.
-    if (std::find(fixed_published_.begin(), fixed_published_.end(), o) == fixed_published_.end()) {
-      fixed_published_.push_back(o);
-      fixed_last_sent_.push_back(now_s_);
-    }
+    if (fixed_slot_[o] < 0) start_publishing(o);
   }
   if (to > w.fixed.state[o]) {
     inject_.clear();
@@ -420,18 +417,19 @@ void NetBridge::send_cultural(int o) {
   session_->send_to(group_at(sim_.world().fixed.pos[o]), p);
 }
 
+void NetBridge::start_publishing(int o) {
+  fixed_slot_[o] = static_cast<int>(fixed_published_.size());
+  fixed_published_.push_back(o);
+  fixed_last_sent_.push_back(now_s_);
+}
+
 void NetBridge::publish_fixed(const TickReport& r) {
   for (const auto& d : r.applied.damage) {
     if (!d.fixed) continue;
     if (d.to_state <= fixed_net_state_[d.index]) continue;  // heard from the network already
     fixed_net_state_[d.index] = static_cast<int16_t>(d.to_state);
-    auto it = std::find(fixed_published_.begin(), fixed_published_.end(), d.index);
-    if (it == fixed_published_.end()) {
-      fixed_published_.push_back(d.index);
-      fixed_last_sent_.push_back(now_s_);
-    } else {
-      fixed_last_sent_[it - fixed_published_.begin()] = now_s_;
-    }
+    if (fixed_slot_[d.index] < 0) start_publishing(d.index);
+    else fixed_last_sent_[fixed_slot_[d.index]] = now_s_;
     send_cultural(d.index);
   }
   const double hb = remotes_.thresholds().heartbeat_s;

@@ -160,6 +160,7 @@ class NetBridge {
   void publish_vehicles();
   void publish_collisions(const TickReport& r);
   void publish_fixed(const TickReport& r);
+  void start_publishing(int o);  // object o joins fixed_published_ (sent each heartbeat from now)
   void publish_fires(const TickReport& r);
   void publish_detonations(const TickReport& r);
   void send_cultural(int object);
@@ -213,6 +214,7 @@ class NetBridge {
   std::vector<int16_t> fixed_net_state_;
   std::vector<int> fixed_published_;     // objects we publish
   std::vector<double> fixed_last_sent_;  // per published object
+  std::vector<int> fixed_slot_;          // per fixed object: its index in fixed_published_, or -1
   std::uint64_t fixed_unnumbered_ = 0;   // changed objects past the last cultural entity number
   std::unordered_map<int, std::uint16_t> fire_event_;  // munition index -> event number
   DetonationLedger detonations_;  // ours repeated every heartbeat; received ones applied once

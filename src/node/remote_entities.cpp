@@ -62,18 +62,43 @@ void RemoteEntities::on_entity_state(const net::EntityStatePdu& p, double now_s,
   grow();
   if (!finite3(Eigen::Vector3d(p.location.x, p.location.y, p.location.z))) return;
   const Known before = known(p.entity_id);
-  settle(p.entity_id, table_.apply(p, now_s, unix_now_s), before, p.appearance);
+  const auto r = table_.apply(p, now_s, unix_now_s);
+  if (r != net::RemoteEntityTable::ApplyResult::Ignored) noted_.push_back({p.entity_id, r, before, known(p.entity_id), p.appearance});
 }
 
 void RemoteEntities::on_update(const net::EntityStateUpdatePdu& p, double now_s, double unix_now_s) {
   grow();
   const Known before = known(p.entity_id);
-  settle(p.entity_id, table_.apply(p, now_s, unix_now_s), before, p.appearance);
+  const auto r = table_.apply(p, now_s, unix_now_s);
+  if (r != net::RemoteEntityTable::ApplyResult::Ignored) noted_.push_back({p.entity_id, r, before, known(p.entity_id), p.appearance});
+}
+
+void RemoteEntities::mirror(double now_s, bool poses) {
+  grow();
+  for (const auto& n : noted_) settle(n);
+  noted_.clear();
+  expire(now_s);
+  if (poses) set_poses(now_s);
+  flush();
+}
+
+void RemoteEntities::flush() {
+  if (mirrors_.mirrors.empty()) return;
+  sim_.apply_net_in(mirrors_);
+  mirrors_.clear();
+  grow();
+}
+
+void RemoteEntities::deactivate(int e) {
+  world::Mirror m;
+  m.op = world::Mirror::Op::Deactivate;
+  m.entity = e;
+  mirrors_.mirrors.push_back(m);
 }
 
 RemoteEntities::Known RemoteEntities::known(const net::EntityId& id) const {
   const net::RemoteEntity* r = find(id);
-  return r ? Known{true, r->type, r->marking, r->appearance} : Known{};
+  return r ? Known{true, r->type, r->marking, r->appearance, r->force_id} : Known{};
 }
 
 const char* RemoteEntities::tracked_as(const net::EntityType& t) const {
@@ -93,18 +118,18 @@ nlohmann::json RemoteEntities::tracked_event(const char* type, const net::Entity
   return ev;
 }
 
-void RemoteEntities::settle(const net::EntityId& id, net::RemoteEntityTable::ApplyResult r, const Known& before,
-                            std::uint32_t appearance) {
+void RemoteEntities::settle(const Noted& n) {
   using R = net::RemoteEntityTable::ApplyResult;
-  if (r == R::Ignored) return;
-  if (r == R::Joined) {
-    if (auto i = table_.find(id)) joined(*i);
-  }
+  const net::EntityId& id = n.id;
+  const Known& before = n.before;
+  const std::uint32_t appearance = n.appearance;
+  if (n.result == R::Joined) joined(id, n.after);
+  flush();  // what follows reads the world as the mirrors so far left it
   const int e = index_of(id);
-  if (r == R::Deactivated) {
+  if (n.result == R::Deactivated) {
     if (e >= 0 && sim_.world().ents.active[e]) {
-      auto& ents = sim_.world().ents;
-      ents.active[e] = 0, ents.vel[e] = Vec3::Zero();
+      const auto& ents = sim_.world().ents;
+      deactivate(e);
       auto ev = event("entity_removed");  // its owner took it out of the exercise
       ev["id"] = ents.id[e];
       ev["entity"] = id_text(id);
@@ -119,8 +144,8 @@ void RemoteEntities::settle(const net::EntityId& id, net::RemoteEntityTable::App
     }
     return;
   }
-  const net::RemoteEntity* now = find(id);
-  if (!now) return;
+  if (!n.after.heard) return;
+  const Known* now = &n.after;
   if (e < 0) {  // tracked, not in the world: its damage bits as its owner says
     const unsigned from = before.heard ? damage_bits(before.appearance) : 0, to = damage_bits(appearance);
     if (from == to || !*tracked_as(now->type)) return;
@@ -154,12 +179,12 @@ void RemoteEntities::inject(const world::EntityChange& ch) {
   inject_.clear();
 }
 
-void RemoteEntities::joined(std::size_t ri) {
-  world::World& w = sim_.world();
-  auto& ents = w.ents;
-  const net::RemoteEntity& r = table_[ri];
+void RemoteEntities::joined(const net::EntityId& id, const Known& r) {
+  flush();  // earlier mirrors first: this join reads the world
+  const world::World& w = sim_.world();
+  const auto& ents = w.ents;
   const std::string marking = net::marking_text(r.marking);
-  int e = index_of(r.id);
+  int e = index_of(id);
   int kind = e >= 0 ? kind_for(e, r.type) : -1;
   if (e < 0) {
     // A scenario vehicle of another node with this marking, not yet bound to an entity id.
@@ -181,30 +206,35 @@ void RemoteEntities::joined(std::size_t ri) {
     } else {
       const EntityChoice c = types_->resolve(r.type, w.kinds);
       if (c.kind < 0 && *c.track) {  // tracked, not simulated: no model for what it is
-        auto ev = tracked_event("entity_joined", r.id, r.type, r.marking);
+        auto ev = tracked_event("entity_joined", id, r.type, r.marking);
         ev["model"] = "none";
         log_.write(ev);
         return;
       }
       kind = c.kind;
       if (kind < 0) return;  // no vehicle kind at all in this kinds file
-      const std::string name = marking.empty() ? id_text(r.id) : marking;
-      e = ents.add(name, kind, Vec3::Zero(), 0.f, static_cast<float>(w.kinds[kind].radius_m));
-      ents.node[e] = -1;
-      grow();
+      world::Mirror m;
+      m.op = world::Mirror::Op::Join;
+      m.entity = static_cast<int>(ents.size());
+      m.kind = kind;
+      m.name = marking.empty() ? id_text(id) : marking;
+      mirrors_.mirrors.push_back(std::move(m));
+      e = static_cast<int>(ents.size());
+      flush();  // the entity exists from here on
     }
-    remote_id_[e] = r.id;
-    world_of_[r.id] = e;
+    remote_id_[e] = id;
+    world_of_[id] = e;
   }
-  ents.local[e] = 0;
-  ents.active[e] = 1;
-  ents.autonomous[e] = 0;
-  ents.force[e] = r.force_id;  // as its owner says
+  world::Mirror m;
+  m.op = world::Mirror::Op::Activate;
+  m.entity = e;
+  m.force = r.force_id;  // as its owner says
+  mirrors_.mirrors.push_back(m);
   if (kind < 0) kind = ents.kind[e];
   const bool known_type = same_type(w.kinds[kind].dis, r.type);
   auto ev = event("entity_joined");
   ev["id"] = ents.id[e];
-  ev["entity"] = id_text(r.id);
+  ev["entity"] = id_text(id);
   ev["marking"] = marking;
   ev["kind"] = known_type ? w.kinds[kind].name : type_text(r.type);
   if (!known_type) ev["model"] = w.kinds[kind].name;
@@ -212,15 +242,15 @@ void RemoteEntities::joined(std::size_t ri) {
 }
 
 void RemoteEntities::expire(double now_s) {
-  world::World& w = sim_.world();
+  flush();  // a timeout reads whether the entity is still there
+  const world::World& w = sim_.world();
   table_.expire(now_s, [&](const net::RemoteEntity& r) {
     const int e = index_of(r.id);
     if (e < 0) {  // tracked, not in the world
       if (*tracked_as(r.type)) log_.write(tracked_event("entity_timeout", r.id, r.type, r.marking));
       return;
     }
-    w.ents.active[e] = 0;
-    w.ents.vel[e] = Vec3::Zero();
+    deactivate(e);
     auto ev = event("entity_timeout");
     ev["id"] = w.ents.id[e];
     ev["entity"] = id_text(r.id);
@@ -253,24 +283,27 @@ std::string RemoteEntities::listing(double now_s, std::size_t max_lines) const {
 }
 
 void RemoteEntities::set_poses(double now_s) {
-  world::World& w = sim_.world();
+  flush();  // joins and removals first: only active entities get a pose
+  const world::World& w = sim_.world();
   const auto& frame = w.terrain.frame();
-  auto& ents = w.ents;
   for (std::size_t i = 0; i < table_.size(); ++i) {
     const net::RemoteEntity& r = table_[i];
     const int e = index_of(r.id);
-    if (e < 0 || !ents.active[e]) continue;
+    if (e < 0 || !w.ents.active[e]) continue;
     const net::Pose pose = table_.displayed_pose(i, now_s);
     if (!finite3(pose.position)) continue;
     const Vec3 p = frame.from_ecef(vv(pose.position));
     const Vec3 hpr = frame.from_dis_euler(p, Vec3(pose.orientation.psi, pose.orientation.theta, pose.orientation.phi));
     const Vec3 ahead = frame.from_ecef(vv(pose.position + pose.velocity));  // dead-reckoned, world axes
     if (!usable(p, ahead - p, hpr)) continue;
-    ents.pos[e] = p;
-    ents.vel[e] = ahead - p;
-    ents.heading_deg[e] = static_cast<float>(hpr.x());
-    ents.pitch_deg[e] = static_cast<float>(hpr.y());
-    ents.roll_deg[e] = static_cast<float>(hpr.z());
+    world::Mirror m;
+    m.op = world::Mirror::Op::Pose;
+    m.entity = e;
+    m.pos = p, m.vel = ahead - p;
+    m.heading_deg = static_cast<float>(hpr.x());
+    m.pitch_deg = static_cast<float>(hpr.y());
+    m.roll_deg = static_cast<float>(hpr.z());
+    mirrors_.mirrors.push_back(m);
   }
 }
 

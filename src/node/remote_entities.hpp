@@ -1,15 +1,20 @@
 // Remote-entity bookkeeping of the bridge: vehicles of other nodes, tied to world entities.
-//  * Vehicles of other nodes start local = 0 and inactive; their first Entity State activates
-//    them (matched by marking; an unknown marking adds an entity of the kind its DIS type has
-//    in models/entity_types.toml, entity_type_table.hpp: our kind of that exact type, else the
-//    most specific entry, e.g. the generic kind of its domain). A type the table tracks without
-//    a model (lifeform, cultural feature, environmental, ...) is logged (entity_joined with
-//    model "none" and tracked_as) and listed, but not put into the world. A scenario vehicle whose owner
-//    sends another DIS type takes the kind of that type through world::Changes (to_kind).
-//  * Each tick, before dynamics, a remote entity's pose and velocity (the dead-reckoned one at
-//    that moment, world axes: v + a t, body axes turned into the world) are set from
-//    RemoteEntityTable::displayed_pose (the "remote entity states -> World" stage of
-//    shared/ARCHITECTURE.md; only this stage writes remote poses and their active flag).
+//  * Receiving (on_entity_state / on_update, while the bridge drains its socket) only updates
+//    the DIS table and notes what each PDU did; the world is not touched then.
+//  * mirror(now) is stage 1 of the tick's world changes (the "remote entity states -> World"
+//    stage of shared/ARCHITECTURE.md, node/simulation.hpp): the noted joins, removals and
+//    damage in arrival order, then timeouts, then every active remote entity's pose, each a
+//    world::Mirror applied by world::apply (Simulation::apply_net_in), the events logged as
+//    they are decided. Nothing else writes a remote entity's pose or activity.
+//  * A join: a scenario vehicle of another node with that marking is bound to the remote id;
+//    an unknown marking adds an entity of the kind its DIS type has in models/entity_types.toml
+//    (entity_type_table.hpp: our kind of that exact type, else the most specific entry, e.g. the
+//    generic kind of its domain). A type the table tracks without a model (lifeform, cultural
+//    feature, environmental, ...) is logged (entity_joined with model "none" and tracked_as)
+//    and listed, but not put into the world. A scenario vehicle whose owner sends another DIS
+//    type takes the kind of that type through world::Changes (to_kind).
+//  * Poses: the dead-reckoned pose and velocity at now (world axes: v + a t, body axes turned
+//    into the world) from RemoteEntityTable::displayed_pose.
 //  * No update for the DR timeout deactivates it. Events entity_joined / entity_timeout /
 //    entity_removed (the owner's deactivation, in an Entity State or an Entity State Update): id
 //    (marking), entity "site:app:entity", marking, kind (or the DIS type when unknown, with
@@ -20,6 +25,7 @@
 //    bits changing are a `damage` event too: object, entity, kind (DIS type), tracked_as,
 //    from_state / to_state = none | slight | moderate | destroyed, "remote": true.
 // Ids: world entities keep their remote id across timeouts, so a rejoin reuses the entity.
+// Threading: the tick's thread only (as the Simulation it writes to).
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -53,10 +59,10 @@ class RemoteEntities {
   // clock), UTC unix_now_s (net::RemoteEntityTable::kNoUtc when unknown): its timestamp dates it.
   void on_entity_state(const net::EntityStatePdu& p, double now_s, double unix_now_s);
   void on_update(const net::EntityStateUpdatePdu& p, double now_s, double unix_now_s);
-  // Deactivates entities silent for longer than the timeout (entity_timeout events).
-  void expire(double now_s);
-  // Sets the pose and velocity of every active remote entity to its displayed pose at now_s.
-  void set_poses(double now_s);
+  // Stage 1 (see above): what was noted since the last call, then timeouts (entities silent for
+  // longer than the timeout), then, when `poses`, every active remote entity's displayed pose at
+  // now_s (a frozen node skips the poses).
+  void mirror(double now_s, bool poses = true);
   // One line per remote entity heard and not gone (at most max_lines, then how many more):
   // "  remote 1:50:1 \"r1\" type 1:1:225:1:1:3:0 (m1a1) owner site 1 app 50 last update 0.4 s ago
   // damage intact (appearance damage 0) force 1". The marking is JSON-quoted (decoded, made safe).
@@ -70,19 +76,30 @@ class RemoteEntities {
     net::EntityType type;
     net::Marking marking;
     std::uint32_t appearance = 0;
+    std::uint8_t force_id = 0;
+  };
+  // What one Entity State (Update) did to the table, decided in mirror() (no allocation).
+  struct Noted {
+    net::EntityId id;
+    net::RemoteEntityTable::ApplyResult result;
+    Known before, after;
+    std::uint32_t appearance = 0;  // the PDU's
   };
   Known known(const net::EntityId& id) const;
   // After an Entity State or Entity State Update was applied: join, removal (deactivation) and
   // damage changes, for world entities and tracked-only ones alike.
-  void settle(const net::EntityId& id, net::RemoteEntityTable::ApplyResult r, const Known& before,
-              std::uint32_t appearance);
+  void settle(const Noted& n);
   // What a type is tracked as when it is not put into the world ("lifeform", ...), else "".
   const char* tracked_as(const net::EntityType& t) const;
   // An event about a tracked-only entity: id (marking, or site:app:entity), entity, marking,
   // kind (the DIS type), tracked_as.
   nlohmann::json tracked_event(const char* type, const net::EntityId& id, const net::EntityType& t,
                                const net::Marking& m) const;
-  void joined(std::size_t table_index);
+  void joined(const net::EntityId& id, const Known& r);
+  void expire(double now_s);
+  void set_poses(double now_s);
+  void deactivate(int e);  // a Deactivate mirror
+  void flush();            // applies mirrors_ (Simulation::apply_net_in)
   // The kind a remote entity is shown as: its own when the owner's type matches, else the kind
   // of that type.
   int kind_for(int e, const net::EntityType& t) const;
@@ -102,6 +119,8 @@ class RemoteEntities {
   std::unordered_map<net::EntityId, int, IdHash> world_of_;
   std::vector<net::EntityId> remote_id_;  // per world entity; site 0 = not remote
   world::Changes inject_;                 // reused
+  world::Changes mirrors_;                // reused; only .mirrors
+  std::vector<Noted> noted_;              // since the last mirror()
 };
 
 }  // namespace npsnet::node

@@ -1,6 +1,7 @@
 #include "node/simulation.hpp"
 
 #include <algorithm>
+#include <cassert>
 
 #include "collision/ground.hpp"
 #include "dynamics/autonomous.hpp"
@@ -184,7 +185,16 @@ void Simulation::set_threads(int n, size_t max_grain) {
   detector_.set_jobs(jobs_.get());
 }
 
-void Simulation::inject(const world::Changes& c) { append(injected_, c); }
+void Simulation::inject(const world::Changes& c) {
+  assert(c.mirrors.empty());
+  append(injected_, c);
+}
+
+void Simulation::apply_net_in(const world::Changes& c) {
+  net_in_applied_.clear();
+  world::apply(w_, c, net_in_applied_);
+  assert(net_in_applied_.damage.empty() && net_in_applied_.launched.empty());
+}
 void Simulation::set_time(double t) {
   w_.frame = std::llround(std::max(0.0, t) / dt_);
   w_.t = w_.frame * dt_;

@@ -1,7 +1,8 @@
 // One node's simulation: the fixed-step tick of shared/ARCHITECTURE.md, without I/O pacing.
 // The tick flows one way, in this order:
-//   1. net in (before_step): the bridge mirrors remote entities (their poses, joins, removals)
-//      and queues what other nodes decided (inject / inject_detonation);
+//   1. net in (before_step): the bridge mirrors remote entities (their joins, removals and poses,
+//      world::Mirror, applied at once by world::apply through apply_net_in) and queues what
+//      other nodes decided (inject / inject_detonation);
 //   2. fire orders (scenario schedule, then the player, before_dynamics): each dynamics::fire
 //      decision and the target's autonomous reaction (dynamics::react_to_fire) is applied by
 //      world::apply at once, in the order decided, and logged;
@@ -86,7 +87,10 @@ class Simulation {
   int driven() const { return driven_; }
   dynamics::Controls controls;
   std::function<bool(const collision::Contact&)> decides;
-  void inject(const world::Changes& c);
+  void inject(const world::Changes& c);  // no mirrors: those go through apply_net_in
+  // Stage 1 only (from before_step or a frozen node's idle): applies remote entities' mirrors
+  // (c.mirrors: joins, activity, poses; world/changes.hpp) with world::apply at once.
+  void apply_net_in(const world::Changes& c);
   void inject_detonation(const world::DetonationRecord& d);
 
   // Fires `munition_kind` from `shooter` at an entity or a point, logging the fire event.
@@ -125,7 +129,7 @@ class Simulation {
   world::Applied now_applied_;
   std::deque<std::pair<int64_t, int>> spent_;  // (frame, slot) of local rounds spent, oldest first
   std::vector<world::DetonationRecord> injected_detonations_;
-  world::Applied applied_;
+  world::Applied applied_, net_in_applied_;
 };
 
 }  // namespace npsnet::node

@@ -43,11 +43,36 @@ int launch(World& w, const Launch& l) {
   ents.local[m] = ents.local[l.shooter];
   return m;
 }
+void mirror(World& w, const Mirror& m) {
+  auto& ents = w.ents;
+  if (m.op == Mirror::Op::Join) {
+    assert(m.entity == static_cast<int>(ents.size()) && m.kind >= 0 && m.kind < w.kinds.size());
+    if (m.kind < 0 || m.kind >= w.kinds.size()) return;
+    const int e = ents.add(m.name, m.kind, Vec3::Zero(), 0.f, static_cast<float>(w.kinds[m.kind].radius_m));
+    ents.node[e] = -1, ents.local[e] = 0, ents.active[e] = 0, ents.autonomous[e] = 0;
+    return;
+  }
+  const int e = m.entity;
+  assert(e >= 0 && e < static_cast<int>(ents.size()) && !ents.local[e]);
+  if (e < 0 || e >= static_cast<int>(ents.size())) return;
+  switch (m.op) {
+    case Mirror::Op::Activate:
+      ents.local[e] = 0, ents.active[e] = 1, ents.autonomous[e] = 0, ents.force[e] = m.force;
+      break;
+    case Mirror::Op::Deactivate: ents.active[e] = 0, ents.vel[e].setZero(); break;
+    case Mirror::Op::Pose:
+      ents.pos[e] = m.pos, ents.vel[e] = m.vel;
+      ents.heading_deg[e] = m.heading_deg, ents.pitch_deg[e] = m.pitch_deg, ents.roll_deg[e] = m.roll_deg;
+      break;
+    case Mirror::Op::Join: break;
+  }
+}
 }  // namespace
 
 void apply(World& w, const Changes& c, Applied& out) {
   assert(w.valid());
   auto& ents = w.ents;
+  for (const auto& m : c.mirrors) mirror(w, m);
   for (const auto& ch : c.entities) {
     const int e = ch.entity;
     assert(e >= 0 && e < static_cast<int>(ents.size()));

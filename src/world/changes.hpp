@@ -95,7 +95,25 @@ struct DetonationRecord {
   const char* fuse = "";
 };
 
+// Another node's entity as its owner's Entity States say (node/remote_entities.hpp), decided in
+// stage 1 of the tick (net in, node/simulation.hpp) and applied first:
+//  Join: a new world entity `name` of `kind` at index `entity`, which must be ents.size() when
+//        applied (joins of one Changes are numbered in order); not local, not active, no node.
+//  Activate: it takes part (not local, not autonomous, force as sent); Deactivate: it left the exercise or timed
+//        out (inactive, standing still); Pose: its dead-reckoned pose and velocity (world axes).
+struct Mirror {
+  enum class Op : uint8_t { Join, Activate, Deactivate, Pose };
+  Op op = Op::Pose;
+  int entity = -1;
+  int kind = -1;     // Join
+  uint8_t force = 0; // Activate: the DIS Force ID its owner sends
+  std::string name;  // Join (a join is rare: the name is its one allocation)
+  Vec3 pos{0, 0, 0}, vel{0, 0, 0};
+  float heading_deg = 0, pitch_deg = 0, roll_deg = 0;
+};
+
 struct Changes {
+  std::vector<Mirror> mirrors;
   std::vector<EntityChange> entities;
   std::vector<FixedChange> fixed;
   std::vector<Crater> craters;
@@ -103,7 +121,7 @@ struct Changes {
   std::vector<DetonationRecord> detonations;
   std::vector<Launch> launches;
   void clear() {
-    entities.clear(), fixed.clear(), craters.clear(), collisions.clear(), detonations.clear(), launches.clear();
+    mirrors.clear(), entities.clear(), fixed.clear(), craters.clear(), collisions.clear(), detonations.clear(), launches.clear();
   }
 };
 
@@ -121,7 +139,7 @@ struct Applied {
   void clear() { damage.clear(), terrain_patches.clear(), killed.clear(), launched.clear(); }
 };
 
-// Applies the changes in order (entities, fixed objects, craters, launches); a state never moves backwards (except an owner_state of a remote
+// Applies the changes in order (mirrors, entities, fixed objects, craters, launches); a state never moves backwards (except an owner_state of a remote
 // entity, which is set as its owner says); a crater lowers the terrain and
 // re-seats fixed objects standing in it. Appends what happened to `out`.
 void apply(World& w, const Changes& c, Applied& out);
