@@ -29,6 +29,10 @@ struct BridgeOptions {
   // Other simulators' entity types (models/entity_types.toml); null: the bundled one.
   std::shared_ptr<const EntityTypeTable> entity_types;
   int dis_version = 7;                       // --dis-version: protocol version we send (6 or 7)
+  // Net out decides in the local frame which vehicles may need an Entity State (dr_bound.hpp) and
+  // turns only those into ECEF; false: every vehicle's ECEF state every tick (the same PDUs,
+  // slower: the reference of tests/node/test_dr_bound.cpp).
+  bool dr_prefilter = true;
 };
 
 // Application ids at or above this carry cultural features (fixed objects).

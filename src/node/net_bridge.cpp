@@ -29,7 +29,6 @@ constexpr double kAccelTauS = 0.5;
 constexpr double kAtRestMps = 0.05;
 
 double round3(double v) { return std::round(v * 1000.0) / 1000.0; }
-Eigen::Vector3d ev(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 Vec3 vv(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 double wrap180(double d) {
   d = std::fmod(d + 180.0, 360.0);
@@ -74,8 +73,11 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
   if (o.aoi_cell_m > 0)
     aoi_ = std::make_unique<AreaOfInterest>(o.aoi_cell_m, o.aoi_groups, session_->transport().destination().address, w,
                                             dr_thresholds(o.timeout_s).heartbeat_s);
-  prev_vel_ecef_.assign(own_.size(), Vec3::Zero());
+  prev_vel_.assign(own_.size(), Vec3::Zero());
   accel_.assign(own_.size(), Vec3::Zero());
+  yaw_rate_.assign(own_.size(), 0.f);
+  anchors_.assign(own_.size(), DrAnchor{});
+  quiet_.assign(own_.size(), 0);
   prev_heading_.assign(own_.size(), 0.f);
   removed_.assign(own_.size(), 0);
   for (size_t i = 0; i < own_.size(); ++i) prev_heading_[i] = ents.heading_deg[own_[i]];
@@ -317,35 +319,43 @@ void NetBridge::publish_vehicles() {
   const double t = w.t + dt;  // the time of the state: dynamics has stepped, w.t not yet
   const size_t n = own_.size();
   size_t sent_now = 0, first_deferred = n;
-  // Every vehicle's state in DIS terms (the costly part: geodesy), on the tick's threads.
-  truth_.resize(n);
-  auto truths = [&](int, size_t i0, size_t i1) {
-    for (size_t i = i0; i < i1; ++i)
-      if (!removed_[i]) truth_[i] = entity_truth(w, own_[i]);
+  // Every vehicle in the local frame, on the tick's threads: the published acceleration (the
+  // velocity change per tick, low-pass filtered over kAccelTauS, zero at rest: a tank stopping in
+  // one tick is not sent as |a| = 100 m/s^2), the yaw rate, and whether its Entity State is surely
+  // not due (dr_bound.hpp).
+  const double alpha = dt / (kAccelTauS + dt);
+  auto local = [&](int, size_t i0, size_t i1) {
+    for (size_t i = i0; i < i1; ++i) {
+      const int e = own_[i];
+      const Vec3& v = w.ents.vel[e];
+      if (pubs_[i].has_sent()) accel_[i] += ((v - prev_vel_[i]) / dt - accel_[i]) * alpha;
+      if (!pubs_[i].has_sent() || v.norm() < kAtRestMps) accel_[i].setZero();
+      prev_vel_[i] = v;
+      yaw_rate_[i] = static_cast<float>(wrap180(w.ents.heading_deg[e] - prev_heading_[i]) * kDeg / dt);
+      prev_heading_[i] = w.ents.heading_deg[e];
+      quiet_[i] = opt_.dr_prefilter && !removed_[i] && dr_quiet(anchors_[i], pubs_[i], w, e, t);
+    }
   };
-  if (core::Jobs* jobs = sim_.jobs()) jobs->for_chunks(n, 512, truths);
-  else truths(0, 0, n);
+  if (core::Jobs* jobs = sim_.jobs()) jobs->for_chunks(n, 2048, local);
+  else local(0, 0, n);
   // Round robin from where the last tick's cap stopped, so no vehicle waits more than a few ticks.
   for (size_t k = 0; k < n; ++k) {
     const size_t i = (rr_ + k) % n;
     const int e = own_[i];
     if (removed_[i]) continue;  // taken out by a Remove Entity
-    net::KinematicState s = truth_[i];
-    const Vec3 v = vv(s.velocity);
-    // Published acceleration: the velocity change per tick, low-pass filtered over kAccelTauS
-    // and zero at rest (a tank stopping in one tick is not sent as |a| = 100 m/s^2).
-    if (pubs_[i].has_sent()) accel_[i] += ((v - prev_vel_ecef_[i]) / dt - accel_[i]) * (dt / (kAccelTauS + dt));
-    if (!pubs_[i].has_sent() || v.norm() < kAtRestMps) accel_[i].setZero();
-    s.acceleration = ev(accel_[i]);
-    s.angular_velocity = Eigen::Vector3d(0, 0, wrap180(w.ents.heading_deg[e] - prev_heading_[i]) * kDeg / dt);
-    prev_vel_ecef_[i] = v;
-    prev_heading_[i] = w.ents.heading_deg[e];
     const std::uint32_t app = damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]);
     const std::uint32_t group = group_at(w.ents.pos[e]);
     // A damage change, or a move into another cell's group (announced there at once).
     const bool changed = pubs_[i].has_sent() && (app != sent_appearance_[i] || group != sent_group_[i]);
+    if (!changed && quiet_[i]) continue;  // the exact test would say None
+    const bool capped = (!pack_ || aoi_) && sent_now >= kMaxDatagramsPerTick;
+    if (capped && !changed && first_deferred != n && opt_.dr_prefilter) continue;  // deferred whatever it says
+    net::KinematicState s = exact_state(w, e, pubs_[i], t, anchors_[i]);
+    ++exact_tests_;
+    s.acceleration = anchors_[i].jac * accel_[i];
+    s.angular_velocity = Eigen::Vector3d(0, 0, yaw_rate_[i]);
     if (!changed && pubs_[i].needs_update(s, t) == net::DrPublisher::Reason::None) continue;
-    if ((!pack_ || aoi_) && sent_now >= kMaxDatagramsPerTick && !changed) {  // a damage change never waits
+    if (capped && !changed) {  // a damage change never waits
       if (first_deferred == n) first_deferred = i;
       continue;
     }
@@ -363,6 +373,8 @@ void NetBridge::publish_vehicles() {
       continue;
     }
     pubs_[i].mark_sent(s, t);
+    dr_rebase(s, pubs_[i], t, anchors_[i]);
+    digest_entity_state();
     sent_appearance_[i] = app;
     sent_group_[i] = group;
     ++sent_now;
@@ -370,6 +382,21 @@ void NetBridge::publish_vehicles() {
   }
   if (first_deferred != n) rr_ = first_deferred;
   flush_batch();
+}
+
+void NetBridge::digest_entity_state() {
+  auto mix = [&](const void* p, size_t len) {
+    const auto* b = static_cast<const unsigned char*>(p);
+    for (size_t k = 0; k < len; ++k) es_digest_ = (es_digest_ ^ b[k]) * 1099511628211ull;
+  };
+  mix(&es_.entity_id.entity, sizeof es_.entity_id.entity);
+  mix(&es_.location, sizeof es_.location);
+  mix(&es_.linear_velocity, sizeof es_.linear_velocity);
+  mix(&es_.orientation, sizeof es_.orientation);
+  mix(&es_.dead_reckoning.linear_acceleration, sizeof es_.dead_reckoning.linear_acceleration);
+  mix(&es_.dead_reckoning.angular_velocity, sizeof es_.dead_reckoning.angular_velocity);
+  mix(&es_.appearance, sizeof es_.appearance);
+  mix(&es_.header.timestamp, sizeof es_.header.timestamp);
 }
 
 void NetBridge::flush_batch() {

@@ -14,12 +14,21 @@
 //    arrival_s is the bridge clock (steady seconds, clock_s()). set_source() replaces the socket
 //    by another source of datagrams (run --replay: a recording, node/replay_feed.hpp), called
 //    each tick with the bridge clock, which is then the scenario clock (world t, s).
-//  * Threading: the bridge runs on the tick's thread; the per-vehicle DIS state (geodesy) of
-//    publishing is computed on the Simulation's worker threads (Simulation::jobs), each vehicle
-//    into its own slot, then decided and sent in order: the same PDUs for any thread count.
+//  * Threading: the bridge runs on the tick's thread; the per-vehicle local-frame work of
+//    publishing (acceleration filter, yaw rate, the dead-reckoning bound of dr_bound.hpp) runs on
+//    the Simulation's worker threads (Simulation::jobs), each vehicle into its own slot; then, in
+//    order on the tick's thread, the vehicles the bound cannot clear get their exact ECEF state
+//    and DR test and are sent: the same PDUs for any thread count.
+//  * Net out cost: a vehicle is turned into ECEF / DIS terms (geodesy) only when it may need an
+//    Entity State (dr_bound.hpp: exactly the vehicles the exact DR test would send, never an
+//    approximation), when its damage or cell changed, or when it is sent; past the per-tick cap
+//    a vehicle that would only be deferred is not looked at (it changes nothing).
 //  * Local vehicles (ents.local && ents.node == --node) go out as Entity State PDUs: ECEF
 //    position (m), DIS Euler angles (rad), ECEF velocity (m/s) and acceleration (m/s^2, the
-//    per-tick velocity change low-pass filtered over 0.5 s, zero at rest), yaw rate (rad/s,
+//    per-tick local-frame velocity change low-pass filtered over 0.5 s, zero at rest, turned
+//    into ECEF axes when sent by the local->ECEF Jacobian at the vehicle; before issue 13 the
+//    filter ran on ECEF velocities, which needed every vehicle's geodesy every tick; the two
+//    differ by the Earth's curvature, ~v^2/R = 2e-5 m/s^2 at 10 m/s), yaw rate (rad/s,
 //    body z), timestamp = the scenario time of the state (after the tick's step), the kind's
 //    DIS type, marking = scenario id, damage in appearance bits 3-4 (dis_mapping.hpp), DR
 //    algorithm RVW, sent when the DrPublisher says so (1 m /
@@ -84,6 +93,7 @@
 #include "node/bridge_options.hpp"
 #include "node/event_log.hpp"
 #include "node/detonation_ledger.hpp"
+#include "node/dr_bound.hpp"
 #include "node/ownership.hpp"
 #include "node/remote_entities.hpp"
 #include "node/simulation.hpp"
@@ -128,6 +138,10 @@ class NetBridge {
   std::uint64_t ground_es_sent() const { return ground_es_sent_; }
   int ground_vehicles() const { return ground_vehicles_; }
   double published_s() const { return now_s_ - start_s_; }
+  // Local vehicles turned into ECEF for the dead-reckoning test so far (dr_bound.hpp), and a
+  // digest (FNV-1a) of the kinematics, ids, appearance and timestamp of every Entity State sent.
+  std::uint64_t exact_dr_tests() const { return exact_tests_; }
+  std::uint64_t entity_state_digest() const { return es_digest_; }
   // Handles a pending SIGUSR1 (prints the summary to stderr).
   void check_signal();
 
@@ -158,6 +172,7 @@ class NetBridge {
   void on_fire(const net::FirePdu& p);
   void on_detonation(const net::DetonationPdu& p);
   void publish_vehicles();
+  void digest_entity_state();  // es_ into es_digest_
   void publish_collisions(const TickReport& r);
   void publish_fixed(const TickReport& r);
   void start_publishing(int o);  // object o joins fixed_published_ (sent each heartbeat from now)
@@ -191,13 +206,17 @@ class NetBridge {
   std::vector<int> own_;
   std::vector<net::DrPublisher> pubs_;
   std::vector<std::uint32_t> sent_appearance_;
-  std::vector<Vec3> prev_vel_ecef_;
-  std::vector<Vec3> accel_;  // per own vehicle: filtered ECEF acceleration, m/s^2
+  std::vector<Vec3> prev_vel_;  // per own vehicle: last tick's local velocity, m/s
+  std::vector<Vec3> accel_;     // per own vehicle: filtered local acceleration, m/s^2
+  std::vector<float> yaw_rate_;  // per own vehicle: this tick's heading change, rad/s
+  std::vector<DrAnchor> anchors_;  // per own vehicle: its last exact DR test (dr_bound.hpp)
+  std::vector<std::uint8_t> quiet_;  // per own vehicle: this tick's Entity State surely not due
+  std::uint64_t exact_tests_ = 0;   // vehicles turned into ECEF for the DR test, all ticks
+  std::uint64_t es_digest_ = 1469598103934665603ull;  // FNV-1a of every Entity State sent
   std::vector<std::uint32_t> sent_group_;  // per own vehicle: the group of its last Entity State
   std::unique_ptr<AreaOfInterest> aoi_;
   std::vector<float> prev_heading_;
   std::vector<std::uint8_t> removed_;  // per local vehicle: taken out by a Remove Entity
-  std::vector<net::KinematicState> truth_;  // per local vehicle: this tick's state (reused)
   // Simulation management: pending freeze / resume (UNIX s, -1 none), scenario time to resume at.
   double freeze_at_ = -1, resume_at_ = -1, resume_sim_t_ = -1, frozen_hb_s_ = 0;
   bool frozen_ = false;

@@ -102,6 +102,8 @@ class DrPublisher {
   DrAlgorithm algorithm() const noexcept { return algorithm_; }
   const DrThresholds& thresholds() const noexcept { return thresholds_; }
   bool has_sent() const noexcept { return has_sent_; }
+  // The state last sent, as receivers hold it (floats where the wire has floats).
+  const KinematicState& sent_state() const noexcept { return sent_; }
   double last_sent_s() const noexcept { return last_sent_s_; }
 
  private:

@@ -1,0 +1,110 @@
+// Net out's local-frame dead-reckoning bound (node/dr_bound.hpp, issue 13): its constants hold on
+// the default world's frame, and a crowd sends exactly the Entity States (same digest of ids,
+// kinematics, appearance, timestamps) with the bound as when every vehicle is turned into ECEF
+// every tick, on 1 and 2 threads, capped (one PDU a datagram) and packed.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <random>
+
+#include "node/dr_bound.hpp"
+#include "node/net_bridge.hpp"
+#include "node/simulation.hpp"
+#include "support/scratch.hpp"
+
+using namespace npsnet;
+
+namespace {
+
+const world::Scenario& crowd_scenario() {
+  static const world::Scenario sc = [] {
+    world::Scenario s = world::load_scenario(std::string(NPSNET_SOURCE_DIR) + "/scenarios/default.toml");
+    s.background_vehicles = 2000;
+    s.background_seed = 7;
+    s.background_area = std::make_pair(Vec2(20000, 30000), Vec2(23000, 33000));
+    return s;
+  }();
+  return sc;
+}
+
+const world::World& crowd_world() {
+  static const world::World w = world::build_world(crowd_scenario());
+  return w;
+}
+
+struct Sent {
+  std::uint64_t digest = 0, exact_tests = 0, entity_states = 0;  // ground vehicles' Entity States
+};
+
+Sent run(bool prefilter, int threads, bool pack, int ticks) {
+  if (pack) ::setenv("NPSNET_DIS_PACK", "1", 1);
+  else ::unsetenv("NPSNET_DIS_PACK");
+  const auto file = test::scratch_dir() / ("dr-bound-" + std::to_string(prefilter) + std::to_string(threads) + ".jsonl");
+  node::EventLog log(file);
+  node::Simulation sim(crowd_world(), crowd_scenario(), log, 0.1);
+  sim.set_threads(threads, threads > 1 ? 1 : 0);
+  node::BridgeOptions bo;
+  bo.offline = true;
+  bo.dr_prefilter = prefilter;
+  node::NetBridge bridge(bo, sim, log);
+  bridge.attach();
+  for (int i = 0; i < ticks; ++i) sim.tick();
+  ::unsetenv("NPSNET_DIS_PACK");
+  return {bridge.entity_state_digest(), bridge.exact_dr_tests(), bridge.ground_es_sent()};
+}
+
+}  // namespace
+
+// K (curvature of the local -> ECEF map) and Kf (turn of the level frame per metre) bound what
+// they claim over the whole 50 km map, up to the anchor distance.
+TEST(DrBound, CurvatureAndFrameTurnBoundsHoldOnTheDefaultWorld) {
+  const auto& frame = crowd_world().terrain.frame();
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> map(0, 50000), off(-1, 1), hgt(0, 3000), ang(-180, 180);
+  double worst_pos = 0, worst_rot = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Vec3 pc(map(rng), map(rng), hgt(rng));
+    Vec3 d(off(rng), off(rng), off(rng));
+    d *= node::kMaxAnchorDistM * std::abs(off(rng)) / d.norm();
+    const Vec3 pe = frame.to_ecef(pc);
+    Mat3 jac;
+    for (int c = 0; c < 3; ++c) jac.col(c) = frame.to_ecef(pc + Vec3::Unit(c)) - pe;
+    const double nd = d.norm();
+    const double lin = (frame.to_ecef(pc + d) - pe - jac * d).norm();
+    const double pos_bound = 0.5 * node::kCurvaturePerM * nd * nd + node::kCurvaturePerM * nd;
+    EXPECT_LE(lin, pos_bound) << "at " << pc.transpose() << " d " << d.transpose();
+    worst_pos = std::max(worst_pos, lin / pos_bound);
+    const double h = ang(rng), p = ang(rng) / 4, r = ang(rng) / 4;
+    const Vec3 a = frame.to_dis_euler(pc, h, p, r), b = frame.to_dis_euler(pc + d, h, p, r);
+    const double turn = net::orientation_error_rad({a.x(), a.y(), a.z()}, {b.x(), b.y(), b.z()});
+    EXPECT_LE(turn, node::kFrameTurnPerM * nd + node::kBoundEpsRad) << "at " << pc.transpose() << " d " << d.transpose();
+    worst_rot = std::max(worst_rot, turn / (node::kFrameTurnPerM * nd + node::kBoundEpsRad));
+  }
+  std::printf("worst share of the bound used: position %.3f, orientation %.3f\n", worst_pos, worst_rot);
+}
+
+TEST(DrBound, CrowdSendsTheSameEntityStatesAsTheExactTestEveryTick) {
+  const int ticks = 150;  // 15 s: three heartbeats, turns, collisions
+  const Sent exact = run(false, 1, false, ticks);
+  const Sent fast = run(true, 1, false, ticks);
+  const Sent fast2 = run(true, 2, false, ticks);
+  std::printf("capped: %llu Entity States; ECEF turns: exact %llu, with the bound %llu\n",
+              static_cast<unsigned long long>(exact.entity_states), static_cast<unsigned long long>(exact.exact_tests),
+              static_cast<unsigned long long>(fast.exact_tests));
+  EXPECT_EQ(fast.entity_states, exact.entity_states);
+  EXPECT_EQ(fast.digest, exact.digest);
+  EXPECT_EQ(fast2.entity_states, exact.entity_states);
+  EXPECT_EQ(fast2.digest, exact.digest);
+  EXPECT_LT(fast.exact_tests * 5, exact.exact_tests) << "the bound should spare most vehicles their geodesy";
+
+  const Sent pexact = run(false, 1, true, ticks);
+  const Sent pfast = run(true, 2, true, ticks);
+  std::printf("packed: %llu Entity States; ECEF turns: exact %llu, with the bound %llu\n",
+              static_cast<unsigned long long>(pexact.entity_states), static_cast<unsigned long long>(pexact.exact_tests),
+              static_cast<unsigned long long>(pfast.exact_tests));
+  EXPECT_GT(pexact.entity_states, 2000u * 3) << "every vehicle at least at each heartbeat";
+  EXPECT_LT(exact.entity_states, pexact.entity_states) << "the send cap (128 a tick) should defer some";
+  EXPECT_EQ(pfast.entity_states, pexact.entity_states);
+  EXPECT_EQ(pfast.digest, pexact.digest);
+  EXPECT_LT(pfast.exact_tests * 3, pexact.exact_tests);
+}
