@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "collision/collision.hpp"
+#include "fcl_oracle.hpp"
 #include "support/fcl_mesh.hpp"
 #include "world/pose.hpp"
 #include "world/scenario.hpp"
@@ -49,21 +50,6 @@ namespace {
 
 using Mesh = test::FclMesh;
 using test::fcl_mesh;
-
-fcl::Transform3d tf(const Mat3& r, const Vec3& p) {
-  fcl::Transform3d t = fcl::Transform3d::Identity();
-  t.linear() = r;
-  t.translation() = p;
-  return t;
-}
-
-struct Truth {
-  bool hit = false, started_inside = false, converged = true, graze = false;
-  double t = 0;
-  double distance = 0;  // FCL's distance where it stopped (<= 1 mm when hit)
-  Vec3 point{0, 0, 0};
-  int queries = 0;
-};
 
 struct MethodStats {
   std::string name;
@@ -116,8 +102,6 @@ int main(int argc, char** argv) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
   long truth_hits = 0, started_inside = 0, not_converged = 0, fcl_queries = 0, grazes = 0;
-  const double kTouch = 1e-6;  // m: FCL distance counted as touching
-  const double kNear = 1e-3;   // m: closer than this without touching is a graze, left out
   const auto t_start = std::chrono::steady_clock::now();
   for (long n = 0; n < count; ++n) {
     // --- the encounter -------------------------------------------------------------------
@@ -155,39 +139,14 @@ int main(int argc, char** argv) {
     w.ents.pos[B] = cb1 - rb * sb0.sphere_centre;
     (void)cb0;
     // --- the truth: FCL distance, conservative advancement ---------------------------------
-    Truth tr;
+    bench::FclToi tr;
     {
-      auto pose_at = [&](int e, double t) { return Vec3(w.ents.pos[e] - w.ents.vel[e] * dt * (1 - t)); };
       const Vec3 ca0 = ca1 - w.ents.vel[A] * dt;
       const collision::Trace hb = collision::sphere_sweep(ca0, ca1, sa0.bound_radius, cb0, cb1, sb0.bound_radius);
-      if (hb.hit) {
-        fcl::CollisionObjectd oa(meshes[w.kinds[ka].models[0]]), ob(meshes[w.kinds[kb].models[0]]);
-        const double per_t = speed * dt;  // metres of relative travel per unit of t
-        double t = hb.fraction;
-        bool near = false;  // within 1 mm: go on to 1 um to tell a touch from a graze
-        for (int it = 0; it < 600; ++it) {
-          oa.setTransform(tf(ra, pose_at(A, t)));
-          ob.setTransform(tf(rb, pose_at(B, t)));
-          fcl::DistanceRequestd req(true);
-          fcl::DistanceResultd res;
-          fcl::distance(&oa, &ob, req, res);
-          ++tr.queries;
-          if (!near && res.min_distance <= kNear) near = true;
-          if (res.min_distance <= kTouch) {
-            tr.hit = true;
-            tr.t = t;
-            tr.started_inside = it == 0 && t == 0 && res.min_distance <= 0;
-            tr.point = 0.5 * (res.nearest_points[0] + res.nearest_points[1]);
-            tr.distance = res.min_distance;
-            break;
-          }
-          if (per_t <= 0) break;
-          t += (res.min_distance - 0.5 * kTouch) / per_t;
-          if (t > std::min(1.0, hb.exit_fraction)) break;
-          if (it == 599) tr.converged = false;
-        }
-        tr.graze = near && !tr.hit;
-      }
+      if (hb.hit)
+        tr = bench::fcl_toi(meshes[w.kinds[ka].models[0]], ra, w.ents.pos[A], w.ents.vel[A] * dt,
+                            meshes[w.kinds[kb].models[0]], rb, w.ents.pos[B], w.ents.vel[B] * dt, hb.fraction,
+                            std::min(1.0, hb.exit_fraction));
     }
     fcl_queries += tr.queries;
     grazes += tr.graze || !tr.converged;

@@ -32,18 +32,12 @@ int main() {
 #else
 #include <fcl/narrowphase/distance.h>
 
+#include "fcl_oracle.hpp"
 #include "support/fcl_mesh.hpp"
 
 using namespace npsnet;
 
 namespace {
-
-fcl::Transform3d tf(const Mat3& r, const Vec3& p) {
-  fcl::Transform3d t = fcl::Transform3d::Identity();
-  t.linear() = r;
-  t.translation() = p;
-  return t;
-}
 
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return NAN;
@@ -112,29 +106,11 @@ int main(int argc, char** argv) {
     Truth tr;
     const Mat3 ra = world::pose_rotation(w.ents.heading_deg[a], w.ents.pitch_deg[a], w.ents.roll_deg[a]);
     const Mat3 rb = world::pose_rotation(w.ents.heading_deg[b], w.ents.pitch_deg[b], w.ents.roll_deg[b]);
-    auto pose_at = [&](int e, double t) { return Vec3(w.ents.pos[e] - w.ents.vel[e] * dt * (1 - t)); };
-    fcl::CollisionObjectd oa(meshes[model(a)]), ob(meshes[model(b)]);
-    const double per_t = (w.ents.vel[a] - w.ents.vel[b]).norm() * dt;
-    double t = 0;
-    bool near = false;
-    for (int it = 0; it < 600; ++it) {
-      oa.setTransform(tf(ra, pose_at(a, t)));
-      ob.setTransform(tf(rb, pose_at(b, t)));
-      fcl::DistanceRequestd req(true);
-      fcl::DistanceResultd res;
-      fcl::distance(&oa, &ob, req, res);
-      near = near || res.min_distance <= 1e-3;
-      if (res.min_distance <= 1e-6) {
-        tr.hit = true;
-        tr.started_inside = it == 0;
-        tr.point = 0.5 * (res.nearest_points[0] + res.nearest_points[1]);
-        break;
-      }
-      if (per_t <= 0) break;
-      t += (res.min_distance - 0.5e-6) / per_t;
-      if (t > 1) break;
-    }
-    tr.verdict = !(near && !tr.hit);
+    const bench::FclToi o = bench::fcl_toi(meshes[model(a)], ra, w.ents.pos[a], w.ents.vel[a] * dt, meshes[model(b)], rb,
+                                           w.ents.pos[b], w.ents.vel[b] * dt);
+    tr.hit = o.hit, tr.started_inside = o.started_inside, tr.point = o.point;
+    const bool near = o.graze || !o.converged;
+    tr.verdict = !near;
     no_verdict += !tr.verdict;
     truth_hits += tr.hit && tr.verdict;
     started_inside += tr.hit && tr.started_inside;

@@ -207,6 +207,14 @@ class Detector {
   IdRank rank_, fixed_rank_;
   int64_t ranked_created_ = -1;
   std::vector<Shape> shapes_;           // per model index
+  // Turning during the tick (per entity slot): the orientation (heading, pitch, roll, deg) at the
+  // start of this tick = the end of the last one when the slot held the same kind and was active
+  // then (else the end's: no turn); prev_* keep this tick's end for the next.
+  using Hpr = std::array<float, 3>;
+  std::vector<Hpr> start_hpr_, prev_hpr_;
+  std::vector<int16_t> prev_kind_;
+  std::vector<uint8_t> prev_ok_;
+  Motion motion(const world::World& w, int e) const;  // entity e's motion over this tick
   core::Jobs* jobs_ = nullptr;
   std::vector<Lane> lanes_;
   std::vector<ViewVolume> views_;

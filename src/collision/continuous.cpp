@@ -42,35 +42,42 @@ void Detector::prepare_shapes(const world::World& w) {
   }
 }
 
+Motion Detector::motion(const world::World& w, int e) const {
+  const auto& ents = w.ents;
+  Motion m;
+  m.end.rot = world::pose_rotation(ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]);
+  m.end.pos = ents.pos[e];
+  m.move = ents.vel[e] * opt_.dt_s;  // displacement over the tick
+  const Hpr& s = start_hpr_[e];
+  m.rot0 = s == Hpr{ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]} ? m.end.rot
+                                                                                : world::pose_rotation(s[0], s[1], s[2]);
+  return m;
+}
+
 bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier tier, double t_in, double t_out,
                       Contact& k, Lane& L) {
   const auto& ents = w.ents;
-  const double dt = opt_.dt_s;
   const Shape& sa = shapes_[w.kinds[ents.kind[a]].models[ents.state[a]]];
-  const Mat3 ra = world::pose_rotation(ents.heading_deg[a], ents.pitch_deg[a], ents.roll_deg[a]);
-  const Vec3 va = ents.vel[a] * dt;  // displacement over the tick
-  const Vec3 pa_end = ents.pos[a];
+  const Motion ma = motion(w, a);
+  Motion mb;
   const Shape* sbp;
-  Mat3 rb;
-  Vec3 vb = Vec3::Zero(), pb_end;
   if (b_fixed) {
     sbp = &shapes_[w.kinds[w.fixed.kind[b]].models[w.fixed.state[b]]];
-    rb = world::pose_rotation(w.fixed.heading_deg[b], 0, 0);
-    pb_end = w.fixed.pos[b];
+    mb.end.rot = mb.rot0 = world::pose_rotation(w.fixed.heading_deg[b], 0, 0);
+    mb.end.pos = w.fixed.pos[b];
   } else {
     sbp = &shapes_[w.kinds[ents.kind[b]].models[ents.state[b]]];
-    rb = world::pose_rotation(ents.heading_deg[b], ents.pitch_deg[b], ents.roll_deg[b]);
-    vb = ents.vel[b] * dt;
-    pb_end = ents.pos[b];
+    mb = motion(w, b);
   }
   const Shape& sb = *sbp;
-  auto poses = [&](double t, Pose& pa, Pose& pb) {
-    pa.rot = ra, pa.pos = pa_end - va * (1 - t);
-    pb.rot = rb, pb.pos = pb_end - vb * (1 - t);
-  };
+  const Vec3 &va = ma.move, &vb = mb.move;
+  auto poses = [&](double t, Pose& pa, Pose& pb) { pa = ma.pose_at(t), pb = mb.pose_at(t); };
   const double rel = (va - vb).norm();
-  const Trace toi = cast_shapes(sa, Pose{ra, pa_end}, va, sb, Pose{rb, pb_end}, vb, tier, t_in, t_out, L.scratch,
-                                L.stats.tier_decided);
+  // Neither turns: the straight search (cast_shapes); else the angular bound (cast_turning).
+  const bool turning = ma.rot0 != ma.end.rot || mb.rot0 != mb.end.rot;
+  const Trace toi = turning ? cast_turning(sa, ma, sb, mb, tier, t_in, t_out, L.scratch, L.stats.tier_decided)
+                            : cast_shapes(sa, ma.end, va, sb, mb.end, vb, tier, t_in, t_out, L.scratch,
+                                          L.stats.tier_decided);
   if (!toi.hit) return false;
   const double hi = toi.fraction;
   Pose pa, pb;
@@ -82,8 +89,10 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
   // On the meeting triangles' intersection: at hi, or a few millimetres of travel later when
   // the surfaces only touch there.
   bool met = false;
+  // (travel: the fastest a point of either body moves, the turn's included)
+  const double travel = turning ? rel + sa.pivot_radius * ma.angle() + sb.pivot_radius * mb.angle() : rel;
   for (int i = 0; i < 8 && !met; ++i) {
-    const double t = std::min(1.0, hi + i * 0.002 / std::max(rel, 1e-9));
+    const double t = std::min(1.0, hi + i * 0.002 / std::max(travel, 1e-9));
     Pose qa, qb;
     poses(t, qa, qb);
     met = mesh_overlap(sa, qa, sb, qb, L.scratch, &p);
@@ -160,6 +169,8 @@ bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
     return true;
   }
   prepare_shapes(w);
+  if (start_hpr_.size() < ents.size()) start_hpr_.resize(ents.size());
+  for (int e : {a, b}) start_hpr_[e] = Hpr{ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]};  // no turn known
   Vec3 c0[2], c1[2];
   double rs[2], rb[2];
   for (int s = 0; s < 2; ++s) {
@@ -321,8 +332,12 @@ void Detector::detect_continuous(const world::World& w) {
   const double dt = opt_.dt_s;
   // Active entities, their sweeps and swept boxes. Reject non-finite input before any use.
   order_.clear();
+  start_hpr_.resize(n), prev_hpr_.resize(n), prev_kind_.resize(n, -1), prev_ok_.resize(n, 0);
   for (int e = 0; e < n; ++e) {
-    if (!ents.active[e]) continue;
+    if (!ents.active[e]) {
+      prev_ok_[e] = 0;
+      continue;
+    }
     check_finite(ents, e);
     order_.push_back(static_cast<uint32_t>(e));
   }
@@ -339,6 +354,17 @@ void Detector::detect_continuous(const world::World& w) {
       const Tier top = opt_.tier != Tier::Auto ? opt_.tier : top_tier(w.kinds[ents.kind[e]]);
       const Shape& s = shapes_[w.kinds[ents.kind[e]].models[ents.state[e]]];
       r_bound_[i] = top == Tier::Sphere ? r_sphere_[i] : std::max(r_sphere_[i], static_cast<float>(s.bound_radius * 1.0001 + 1e-3));
+      // Turning: the start orientation is the last tick's end (same kind, active then).
+      const Hpr now{ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]};
+      start_hpr_[e] = prev_ok_[e] && prev_kind_[e] == ents.kind[e] ? prev_hpr_[e] : now;
+      prev_hpr_[e] = now, prev_kind_[e] = ents.kind[e], prev_ok_[e] = 1;
+      // The model's centre turns about its origin: it strays from the straight sweep by at most
+      // turn * |centre| (the turn bounded by the sum of the three angles' changes).
+      if (top != Tier::Sphere && start_hpr_[e] != now) {
+        double turn = 0;
+        for (int k = 0; k < 3; ++k) turn += std::abs(std::remainder(double(now[k]) - start_hpr_[e][k], 360.0));
+        r_bound_[i] += static_cast<float>(turn * kPi / 180 * s.sphere_centre.norm());
+      }
       boxes_[i] = swept_box(c0_[i], c1_[i], r_bound_[i]);
     }
   });

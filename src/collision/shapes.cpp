@@ -17,6 +17,7 @@ Shape make_shape(const world::Model& m) {
   for (const Vec3f& v : m.vertices) {
     s.hull.push_back(v.cast<double>());
     s.bound_radius = std::max(s.bound_radius, (v.cast<double>() - s.sphere_centre).norm());
+    s.pivot_radius = std::max(s.pivot_radius, v.cast<double>().norm());
   }
   for (const world::Face& f : m.faces) {
     const Vec3 p0 = m.vertices[m.face_vertices[f.first]].cast<double>();
@@ -79,6 +80,13 @@ Vec3 box_support(const Shape& s, const Pose& p, const Vec3& d) {
   Vec3 c = s.box_centre;
   for (int k = 0; k < 3; ++k) c[k] += dl[k] >= 0 ? s.box_half[k] : -s.box_half[k];
   return p.rot * c + p.pos;
+}
+
+// A ball of radius m (the margin) added to a Minkowski difference: its support in direction v.
+inline Vec3 grown(const Vec3& v, double m) {
+  if (m <= 0) return Vec3::Zero();
+  const double n = v.norm();
+  return n > 0 ? Vec3(v * (m / n)) : Vec3::Zero();
 }
 
 // A shape swept along the segment 0..sweep: its support plus the segment's.
@@ -165,16 +173,18 @@ bool hull_overlap(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb
   return hull_overlap_swept(a, pa, b, pb, Vec3::Zero());
 }
 
-bool hull_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, const Vec3& d) {
+bool hull_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, const Vec3& d, double margin) {
   if (a.hull.empty() || b.hull.empty()) return false;
   const Vec3 d0 = (pb.rot * b.sphere_centre + pb.pos) - (pa.rot * a.sphere_centre + pa.pos);
-  return gjk([&](const Vec3& v) { return Vec3(support(a, pa, v) - swept(support(b, pb, -v), d, -v)); }, d0);
+  return gjk([&](const Vec3& v) { return Vec3(support(a, pa, v) - swept(support(b, pb, -v), d, -v) + grown(v, margin)); }, d0);
 }
 
-bool box_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, const Vec3& d) {
-  if (d.squaredNorm() == 0) return box_overlap(a, pa, b, pb);
+bool box_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, const Vec3& d, double margin) {
+  if (d.squaredNorm() == 0 && margin <= 0) return box_overlap(a, pa, b, pb);
   const Vec3 d0 = (pb.rot * b.box_centre + pb.pos) - (pa.rot * a.box_centre + pa.pos);
-  return gjk([&](const Vec3& v) { return Vec3(box_support(a, pa, v) - swept(box_support(b, pb, -v), d, -v)); }, d0);
+  return gjk([&](const Vec3& v) {
+    return Vec3(box_support(a, pa, v) - swept(box_support(b, pb, -v), d, -v) + grown(v, margin));
+  }, d0);
 }
 
 namespace {
@@ -274,8 +284,8 @@ bool mesh_overlap(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb
 }
 
 bool mesh_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, const Vec3& d,
-                        ShapeScratch& s) {
-  if (d.squaredNorm() == 0) return mesh_overlap(a, pa, b, pb, s);
+                        ShapeScratch& s, double margin) {
+  if (d.squaredNorm() == 0 && margin <= 0) return mesh_overlap(a, pa, b, pb, s);
   // In a's model space: b's triangles at the start, and their sweep.
   const Mat3 r = pa.rot.transpose() * pb.rot;
   const Vec3 t = pa.rot.transpose() * (pb.pos - pa.pos);
@@ -287,8 +297,8 @@ bool mesh_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Po
   for (size_t k = 0; k < b.tris.size(); ++k) {
     for (int v = 0; v < 3; ++v) s.tb[k][v] = r * b.tris[k][v] + t;
     tri_box(s.tb[k], s.lo_b[k], s.hi_b[k]);
-    s.lo_b[k] = s.lo_b[k].cwiseMin(s.lo_b[k] + dl);
-    s.hi_b[k] = s.hi_b[k].cwiseMax(s.hi_b[k] + dl);
+    s.lo_b[k] = s.lo_b[k].cwiseMin(s.lo_b[k] + dl) - Vec3::Constant(margin);
+    s.hi_b[k] = s.hi_b[k].cwiseMax(s.hi_b[k] + dl) + Vec3::Constant(margin);
     blo = blo.cwiseMin(s.lo_b[k]), bhi = bhi.cwiseMax(s.hi_b[k]);
   }
   auto tri_support = [](const std::array<Vec3, 3>& q, const Vec3& v) {
@@ -304,7 +314,8 @@ bool mesh_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Po
       const auto& tb = s.tb[k];
       // The prism b's triangle sweeps, against a's triangle (a at rest in its own frame).
       const Vec3 d0 = (tb[0] + tb[1] + tb[2]) / 3 + 0.5 * dl - (ta[0] + ta[1] + ta[2]) / 3;
-      if (gjk([&](const Vec3& v) { return Vec3(tri_support(ta, v) - swept(tri_support(tb, -v), dl, -v)); }, d0))
+      if (gjk([&](const Vec3& v) { return Vec3(tri_support(ta, v) - swept(tri_support(tb, -v), dl, -v) + grown(v, margin)); },
+              d0))
         return true;
     }
   }

@@ -25,6 +25,7 @@ struct Shape {
   Vec3 sphere_centre{0, 0, 0};
   double bound_radius = 0;                       // every vertex lies within (from sphere_centre)
   double min_half = 0;                           // smallest box half extent (> 0)
+  double pivot_radius = 0;                       // every vertex lies within this of the model origin (m)
   std::vector<Vec3> hull;                        // vertices
   std::vector<std::array<Vec3, 3>> tris;         // non-degenerate triangles
 };
@@ -54,10 +55,14 @@ bool mesh_overlap(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb
 // The same over a time interval: b moves by `d` (world frame, m) relative to a from the poses
 // given, without turning. True when the shapes touch at some time of the interval (the moving
 // shape swept along d is convex for a box, a hull and a triangle: GJK answers exactly).
-bool box_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, const Vec3& d);
-bool hull_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, const Vec3& d);
+// `margin` (m, >= 0): the shapes count as touching when they come within it (each triangle, hull
+// or box grown by a ball of that radius: the turning search's bound, below).
+bool box_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, const Vec3& d,
+                       double margin = 0);
+bool hull_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, const Vec3& d,
+                        double margin = 0);
 bool mesh_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, const Vec3& d,
-                        ShapeScratch& s);
+                        ShapeScratch& s, double margin = 0);
 // Time of impact of two shapes moving straight over a tick without turning: a's pose at
 // fraction t is (a_end.rot, a_end.pos - a_move (1 - t)), likewise b's. Searches [t_in, t_out]
 // up to `tier` (Box, Hull or Mesh; each step the cheapest tier that decides: a box apart says
@@ -69,6 +74,31 @@ bool mesh_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Po
 Trace cast_shapes(const Shape& a, const Pose& a_end, const Vec3& a_move, const Shape& b, const Pose& b_end,
                   const Vec3& b_move, world::ShapeTier tier, double t_in, double t_out, ShapeScratch& s,
                   int64_t* decided = nullptr);
+// A body turning during the tick (issue 13): its orientation goes from rot0 (start of the tick)
+// to end.rot at a constant rate about one axis (the shortest way, slerp), its position straight
+// from end.pos - move to end.pos. pose_at(t): its pose at fraction t.
+struct Motion {
+  Pose end;
+  Vec3 move{0, 0, 0};
+  Mat3 rot0 = Mat3::Identity();
+  Pose pose_at(double t) const;
+  double angle() const;  // the turn over the tick (rad, [0, pi])
+};
+// Time of impact of two turning bodies: conservative advancement with an angular bound. Over
+// [t0, t1] every point of a shape lies within pivot_radius * angle * (t1 - t0) / 2 of where the
+// shape turned to the middle of the interval puts it, so the swept test of the middle
+// orientations grown by both bounds (margin) never misses a touch in [t0, t1]; "no" there
+// clears the whole interval. Intervals that may touch are halved, earlier half first, until no
+// point of either body moves more than kTurnTolM over one (or 2^-kTurnDepth of [t_in, t_out]):
+// the first such interval that may touch ends at the time of impact, so the first touch is found
+// to kTurnTolM and a body turning near but clear of another (by more than kTurnTolM) is cleared.
+// At most kTurnTests tests a pair; past that the earliest interval not cleared counts as the
+// touch (never a miss). Same tiers, answer and `decided` as cast_shapes (which the detector uses
+// when neither body turns).
+inline constexpr int kTurnDepth = 24, kTurnTests = 1024;
+inline constexpr double kTurnTolM = 1e-4;
+Trace cast_turning(const Shape& a, const Motion& ma, const Shape& b, const Motion& mb, world::ShapeTier tier,
+                   double t_in, double t_out, ShapeScratch& s, int64_t* decided = nullptr);
 // Triangle-triangle test (separating axes: the two normals and the nine edge cross products;
 // coplanar pairs also the in-plane edge normals). A zero-area triangle has no surface: false.
 bool tri_tri_overlap(const std::array<Vec3, 3>& t, const std::array<Vec3, 3>& u);

@@ -18,7 +18,10 @@ Shape make_trunk(const world::Model& m, double r) {
     const double a = 2 * kPi * k / kTrunkSides;
     for (double z : {z0, z1}) s.hull.emplace_back(rc * std::cos(a), rc * std::sin(a), z);
   }
-  for (const Vec3& v : s.hull) s.bound_radius = std::max(s.bound_radius, (v - s.sphere_centre).norm());
+  for (const Vec3& v : s.hull) {
+    s.bound_radius = std::max(s.bound_radius, (v - s.sphere_centre).norm());
+    s.pivot_radius = std::max(s.pivot_radius, v.norm());
+  }
   for (int k = 0; k < kTrunkSides; ++k) {  // the sides, two triangles each, and the two caps
     const Vec3 &a0 = s.hull[2 * k], &a1 = s.hull[2 * k + 1];
     const Vec3 &b0 = s.hull[2 * ((k + 1) % kTrunkSides)], &b1 = s.hull[2 * ((k + 1) % kTrunkSides) + 1];

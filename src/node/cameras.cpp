@@ -4,9 +4,22 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/view.hpp"
 #include "world/pose.hpp"
 
 namespace npsnet::node {
+
+collision::ViewVolume view_volume(const render::Camera& cam, int width, int height) {
+  const render::ViewMath vm = render::make_view(cam.eye, cam.target, cam.fov_y_deg, width, height, cam.up);
+  collision::ViewVolume v;
+  v.eye = vm.eye;
+  for (size_t i = 0; i < vm.planes.size(); ++i) {
+    const Eigen::Vector4d p = vm.planes[i].cast<double>();
+    const double n = p.head<3>().norm();
+    v.planes[i] = n > 0 ? Eigen::Vector4d(p / n) : p;
+  }
+  return v;
+}
 
 render::Camera player_camera(const world::World& w, const world::Entities& ents, int e, input::CameraMode mode,
                              double orbit_deg, double orbit_m) {

@@ -26,9 +26,7 @@ bool PlayerWindow::present(const Simulation& sim) {
     orbit_deg_ += devices_->take_orbit_deg();
     orbit_m_ = std::clamp(orbit_m_ * devices_->take_zoom(), 10.0, 2000.0);
   }
-  const int d = sim.driven() >= 0 ? sim.driven() : -1;
-  render::Camera cam = last_;
-  if (d >= 0) cam = player_camera(w, w.ents, d, player_ ? player_->camera() : input::CameraMode::Driver, orbit_deg_, orbit_m_);
+  const render::Camera cam = camera(sim);
   if (player_ && player_->applied_device_wall_s() >= 0 && pending_event_s_ < 0) pending_event_s_ = player_->applied_device_wall_s();
   const bool moved = (cam.eye - last_.eye).norm() > 1e-6 || (cam.target - last_.target).norm() > 1e-6;
   last_ = cam;
@@ -41,6 +39,13 @@ bool PlayerWindow::present(const Simulation& sim) {
     pending_event_s_ = -1;
   }
   return open;
+}
+
+render::Camera PlayerWindow::camera(const Simulation& sim) const {
+  const int d = sim.driven();
+  if (d < 0) return last_;
+  return player_camera(sim.world(), sim.world().ents, d, player_ ? player_->camera() : input::CameraMode::Driver,
+                       orbit_deg_, orbit_m_);
 }
 
 void PlayerWindow::wait_until(std::chrono::steady_clock::time_point deadline) {

@@ -21,6 +21,8 @@ class PlayerWindow {
   PlayerWindow(Snapshots& snaps, Player* player);  // player may be null (no devices then)
   void before_tick();
   bool present(const Simulation& sim);  // false once the window is closed
+  // The camera the next present() shows (the driven vehicle's, in the player's mode; else the last).
+  render::Camera camera(const Simulation& sim) const;
   void wait_until(std::chrono::steady_clock::time_point deadline);
 
  private:

@@ -9,6 +9,7 @@
 #include "node/options.hpp"
 #include "node/player.hpp"
 #ifdef NPSNET_HAVE_RENDER
+#include "node/cameras.hpp"
 #include "node/player_window.hpp"
 #include "node/snapshots.hpp"
 #endif
@@ -219,6 +220,19 @@ int run_command(const RunOptions& opt) {
   std::unique_ptr<PlayerWindow> window;
   if (o.window && snaps) window = std::make_unique<PlayerWindow>(*snaps, player.get());
   auto more = [&] { return snaps && snaps->pending(); };
+  // The views this node renders after each tick (the window's camera, the snapshot frames due)
+  // go to the detector first: pairs seen there get the exact tier (scene-aware auto tier).
+  std::vector<render::Camera> cams;
+  std::vector<collision::ViewVolume> views;
+  if (snaps)
+    sim.before_detect = [&](const world::World& ww) {
+      cams.clear();
+      if (window) cams.push_back(window->camera(sim));
+      snaps->cameras_due(ww, cams);
+      views.clear();
+      for (const auto& c : cams) views.push_back(view_volume(c, snaps->options().width, snaps->options().height));
+      sim.set_views(views);
+    };
 #else
   auto more = [] { return false; };
 #endif

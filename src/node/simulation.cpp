@@ -213,6 +213,7 @@ void Simulation::tick() {
   if (before_dynamics) before_dynamics();
   dynamics::step(w_, dt_, impacts_, jobs_.get());
   if (driven_ >= 0 && w_.ents.driven[driven_] && w_.ents.local[driven_]) dynamics::drive(w_, driven_, controls, dt_, crashes_);
+  if (before_detect) before_detect(w_);
   detector_.detect(w_, contacts_);
   if (decides)
     contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(), [&](const collision::Contact& c) { return !decides(c); }),

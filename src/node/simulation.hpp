@@ -67,6 +67,9 @@ class Simulation {
   // Every crater made so far (local and remote rounds), in order (--state-out).
   const std::vector<world::Crater>& craters() const { return craters_; }
   std::function<void(const TickReport&)> on_tick;  // renderer, snapshots, network
+  // Runs after dynamics, before collision::detect (stage 4), on the world as this tick leaves it:
+  // the node sets the views it will render after the tick (set_views; run.cpp).
+  std::function<void(const world::World&)> before_detect;
   // Runs after the outcomes are decided, before they are applied (imminent snapshots).
   std::function<void(const world::World&, const world::Changes&)> before_apply;
   // Network hooks (the net<->world bridge):

@@ -222,15 +222,7 @@ void Snapshots::after_tick(const world::World& w, const world::Changes& c, const
   for (size_t i = 0; i < pending_.size();) {
     if (pending_[i].due_t <= w.t + 1e-9) {
       const Pending& p = pending_[i];
-      render::Camera cam;
-      cam.eye = p.eye, cam.target = p.target;
-      if (p.a >= 0 && p.b_fixed) {  // the object it changed, close, from where the vehicle hides none of it
-        cam = changed_object_camera(w, p.a, p.b);
-      } else if (p.a >= 0) {  // framed again from where the pair is now
-        const Vec3 pb = p.b >= 0 ? world::entity_centre(w, p.b) : p.b_point;
-        cam = render::look_at_pair(w, world::entity_centre(w, p.a), pb);
-      }
-      write(w, p.base + "-result.png", nullptr, cam, w.t, "outside", p.subject);
+      write(w, p.base + "-result.png", nullptr, result_camera(w, p), w.t, "outside", p.subject);
       pending_.erase(pending_.begin() + static_cast<long>(i));
     } else {
       ++i;
@@ -247,21 +239,9 @@ void Snapshots::after_tick(const world::World& w, const world::Changes& c, const
   }
   if (opt_.every_s > 0 && w.t + 1e-9 >= next_periodic_) {
     bool alive = false;
-    int d = live_vehicle(w, alive);
-    if (driven_ >= 0 && driven_ < static_cast<int>(w.ents.size()) &&
-        w.ents.state[driven_] + 1 < static_cast<int>(w.kinds[w.ents.kind[driven_]].states.size()))
-      d = driven_, alive = true;  // the player's vehicle
+    render::Camera cam;
+    const int d = periodic_camera(w, cam, alive);
     if (d >= 0) {
-      render::Camera cam;
-      if (alive) {
-        cam = player_camera(w, w.ents, d, input::CameraMode::Driver);
-      } else {  // every vehicle of this node is a wreck: look at the first one from outside
-        const Vec3 c = world::entity_centre(w, d);
-        const Vec2 f = heading_to_dir(w.ents.heading_deg[d]);
-        cam.eye = c - Vec3(f.x(), f.y(), 0) * 40.0 + Vec3(0, 0, 25.0);
-        cam.eye.z() = std::max(cam.eye.z(), w.terrain.height(cam.eye.x(), cam.eye.y()) + 10.0);
-        cam.target = c;
-      }
       char name[64];
       std::snprintf(name, sizeof name, "%04d-periodic-t%07.1f.png", ++counter_, w.t);
       if (budget(w, 1, {name}))
@@ -277,6 +257,49 @@ void Snapshots::after_tick(const world::World& w, const world::Changes& c, const
   s.fixed_state = w.fixed.state;
   head_ = (head_ + 1) % ring_.size();
   filled_ = std::min(filled_ + 1, ring_.size());
+}
+
+render::Camera Snapshots::result_camera(const world::World& w, const Pending& p) const {
+  render::Camera cam;
+  cam.eye = p.eye, cam.target = p.target;
+  if (p.a >= 0 && p.b_fixed) {  // the object it changed, close, from where the vehicle hides none of it
+    cam = changed_object_camera(w, p.a, p.b);
+  } else if (p.a >= 0) {  // framed again from where the pair is now
+    const Vec3 pb = p.b >= 0 ? world::entity_centre(w, p.b) : p.b_point;
+    cam = render::look_at_pair(w, world::entity_centre(w, p.a), pb);
+  }
+  return cam;
+}
+
+int Snapshots::periodic_camera(const world::World& w, render::Camera& cam, bool& alive) const {
+  alive = false;
+  int d = live_vehicle(w, alive);
+  if (driven_ >= 0 && driven_ < static_cast<int>(w.ents.size()) &&
+      w.ents.state[driven_] + 1 < static_cast<int>(w.kinds[w.ents.kind[driven_]].states.size()))
+    d = driven_, alive = true;  // the player's vehicle
+  if (d < 0) return d;
+  if (alive) {
+    cam = player_camera(w, w.ents, d, input::CameraMode::Driver);
+  } else {  // every vehicle of this node is a wreck: look at the first one from outside
+    const Vec3 c = world::entity_centre(w, d);
+    const Vec2 f = heading_to_dir(w.ents.heading_deg[d]);
+    cam.eye = c - Vec3(f.x(), f.y(), 0) * 40.0 + Vec3(0, 0, 25.0);
+    cam.eye.z() = std::max(cam.eye.z(), w.terrain.height(cam.eye.x(), cam.eye.y()) + 10.0);
+    cam.target = c;
+  }
+  return d;
+}
+
+void Snapshots::cameras_due(const world::World& w, std::vector<render::Camera>& out) const {
+  for (const Pending& p : pending_)
+    if (p.due_t <= w.t + 1e-9) out.push_back(result_camera(w, p));
+  if (!start_view_) {
+    const int d = driven(w);
+    if (d >= 0) out.push_back(player_camera(w, w.ents, d, input::CameraMode::Driver));
+  }
+  bool alive = false;
+  render::Camera cam;
+  if (opt_.every_s > 0 && w.t + 1e-9 >= next_periodic_ && periodic_camera(w, cam, alive) >= 0) out.push_back(cam);
 }
 
 bool Snapshots::present(const world::World& w, const render::Camera& cam, const std::string& mode) {

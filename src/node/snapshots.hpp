@@ -67,6 +67,12 @@ class Snapshots {
   // The player's vehicle (-1: none; the first vehicle of this node then stands in): periodic
   // frames, the start view and the window's HUD follow it.
   void set_driven(int e) { driven_ = e; }
+  // The cameras of the frames after_tick will render at the end of this tick (due result frames,
+  // the start view, a due periodic frame; frames the budget then skips included), from the world
+  // `w` as it stands before collision detection: the views whose pairs the collision detector
+  // decides at the exact tier (run.cpp, Simulation::before_detect).
+  void cameras_due(const world::World& w, std::vector<render::Camera>& out) const;
+  const SnapshotOptions& options() const { return opt_; }
   render::Renderer& renderer() { return *r_; }
   bool pending() const { return !pending_.empty(); }
   int written() const { return written_; }
@@ -94,6 +100,9 @@ class Snapshots {
   void write(const world::World& w, const std::string& name, const State* past, const render::Camera& cam, double t,
              const std::string& mode, int hud_entity = kDriven, const nlohmann::json& extra = {});
   int driven(const world::World& w) const;
+  render::Camera result_camera(const world::World& w, const Pending& p) const;
+  // The periodic frame's vehicle (-1: none) and camera; alive: from its driver's station.
+  int periodic_camera(const world::World& w, render::Camera& cam, bool& alive) const;
   int driven_ = -1;
   bool start_view_ = false;
   // The buffered state of scenario time `t` (interpolated), or the oldest one; null when none.
