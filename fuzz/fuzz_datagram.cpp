@@ -2,7 +2,8 @@
 // NetBridge::receive (the session's parser and filter, remote entities joining / updating /
 // leaving, cultural features, Fire, Detonation, Collision) -> Simulation::tick (remote poses,
 // dynamics, collision, world::apply, craters, the event log) -> the bridge's publishing.
-// The node is node 1 (site 1, app 1, exercise 1) of fuzz/data/scenarios/net.toml; each input
+// The node is node 1 (site 1, app 1, exercise 1) of fuzz/data/scenarios/net.toml (a 2.5 km world
+// with 28 objects: a tick costs little); each input
 // starts from a fresh copy of that world, so a finding replays alone. The event log is written
 // to /dev/null (every line serialised), or to $NPSNET_FUZZ_EVENTS when set (to read a replay). Its session is on loopback multicast (a group and port
 // of its own, TTL 1, loopback off): what the tick publishes never leaves the host.

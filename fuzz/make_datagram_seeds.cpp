@@ -50,17 +50,17 @@ int main(int argc, char** argv) {
     return out;
   };
   // apc2 is entity 2 of node 2 (entity number = scenario index + 1), heli2 entity 3.
-  const auto apc = es(2, "bmp", "apc2", ground(43755.0, 260.0));
-  auto heli = es(3, "ah64", "heli2", ecef(43750.0, 240.0, 400.0));
+  const auto apc = es(2, "bmp", "apc2", ground(1255.0, 260.0));
+  auto heli = es(3, "ah64", "heli2", ecef(1250.0, 240.0, 400.0));
   heli.dead_reckoning.algorithm = 5;  // RVB
-  const auto stranger = es(40, "f16", "stranger", ecef(43000.0, 300.0, 900.0));
+  const auto stranger = es(40, "f16", "stranger", ecef(500.0, 300.0, 900.0));
   auto dead = apc;
   dead.appearance = 3u << 3;  // destroyed
   auto gone = apc;
   gone.appearance = 1u << 23;  // deactivated
   net::EntityStateUpdatePdu esu;
   esu.entity_id = apc.entity_id;
-  esu.location = ground(43752.0, 260.0);
+  esu.location = ground(1252.0, 260.0);
   net::CollisionPdu col;
   col.issuing_entity_id = apc.entity_id;
   col.colliding_entity_id = {1, 1, 1};  // tank1, ours
@@ -75,10 +75,10 @@ int main(int argc, char** argv) {
   net::DetonationPdu det;
   det.firing_entity_id = apc.entity_id;
   det.exploding_entity_id = fire.munition_id;
-  det.location = ground(43733.34, 249.02);  // the first tree of the objects file
+  det.location = ground(1233.34, 249.02);  // the first tree of the objects file
   det.descriptor.munition_type = type_of("he_round");
   det.detonation_result = 3;  // ground impact
-  auto tree = es(1, "tree", "T0000001", ground(43733.34, 249.02));
+  auto tree = es(1, "tree", "T0000001", ground(1233.34, 249.02));
   tree.entity_id.application = 0x8000 | 2;  // cultural feature: object index 0
   tree.appearance = 2;                      // stump
   write("es_apc2", bytes(apc));

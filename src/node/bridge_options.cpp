@@ -18,6 +18,17 @@ double dis_timeout_from_env(double fallback) {
   return s;
 }
 
+double test_drop_detonations_from_env() {
+  const char* v = std::getenv("NPSNET_TEST_DROP_DETONATIONS_S");
+  if (!v || !*v) return 0;
+  char* end = nullptr;
+  const double s = std::strtod(v, &end);
+  if (end == v || *end != '\0' || !std::isfinite(s) || s < 0 || s > 3600)
+    throw std::runtime_error(std::string("NPSNET_TEST_DROP_DETONATIONS_S='") + v +
+                             "': must be a number of seconds, 0 to 3600");
+  return s;
+}
+
 bool dis_pack_from_env() {
   const char* v = std::getenv("NPSNET_DIS_PACK");
   return v && std::string(v) == "1";

@@ -42,6 +42,10 @@ inline constexpr std::uint16_t kCulturalAppBit = 0x8000;
 double dis_timeout_from_env(double fallback);
 // NPSNET_DIS_PACK == "1".
 bool dis_pack_from_env();
+// Test hook (tests/multinode/test_adoption.cpp): NPSNET_TEST_DROP_DETONATIONS_S=S makes the bridge
+// ignore every Detonation PDU it receives during its first S seconds, as if each was lost; 0 when
+// unset; a value that is not a finite number of seconds in [0, 3600] throws.
+double test_drop_detonations_from_env();
 
 // The session of `o`; throws on an identity out of range (--app 1-32767, --site 1-65535,
 // --exercise 1-255), a --dis-version other than 6 or 7, a --ttl out of 1-255, or an --aoi grid that cannot be made (net/aoi.hpp);

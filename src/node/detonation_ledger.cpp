@@ -20,40 +20,91 @@ std::uint64_t key_of(const net::DetonationPdu& p) {
   return h;
 }
 
+std::uint32_t node_id(std::uint16_t site, std::uint16_t app) { return (std::uint32_t(site) << 16) | app; }
+
 }  // namespace
 
-void DetonationLedger::sent(const net::DetonationPdu& p, std::uint32_t group, double now_s) {
+void DetonationLedger::heard(std::uint16_t site, std::uint16_t application, double now_s) {
+  const std::uint32_t id = node_id(site, application);
+  for (auto& p : peers_)
+    if (p.id == id) {
+      p.last_s = now_s;
+      return;
+    }
+  if (peers_.size() < kMaxPeers) peers_.push_back({id, now_s});
+}
+
+int DetonationLedger::rank(const net::EntityId& firer, double now_s, double live_s) const {
+  const std::uint32_t self = node_id(site_, app_), fired_by = node_id(firer.site, firer.application);
+  int r = 0;
+  for (const auto& p : peers_)
+    if (p.id < self && p.id != fired_by && now_s - p.last_s <= live_s) ++r;
+  return r;
+}
+
+void DetonationLedger::keep(const net::DetonationPdu& p, std::uint32_t group, double now_s, std::uint64_t key,
+                            Role role) {
   if (kept_.size() < kMaxKept) {
-    kept_.push_back({p, group, now_s});
+    kept_.push_back({p, group, now_s, key, role});
+    seen_[key] = static_cast<std::int32_t>(kept_.size() - 1);
     return;
   }
-  kept_[oldest_] = {p, group, now_s};  // the oldest stops being repeated
+  auto old = seen_.find(kept_[oldest_].key);  // the oldest stops being repeated
+  if (old != seen_.end() && old->second == static_cast<std::int32_t>(oldest_)) old->second = -1;
+  kept_[oldest_] = {p, group, now_s, key, role};
+  seen_[key] = static_cast<std::int32_t>(oldest_);
   oldest_ = (oldest_ + 1) % kMaxKept;
   ++dropped_kept_;
 }
 
-void DetonationLedger::resend_due(double now_s, double heartbeat_s,
-                                  const std::function<void(const net::DetonationPdu&, std::uint32_t)>& resend) {
-  for (auto& k : kept_)
-    if (now_s - k.last_s >= heartbeat_s) {
-      k.last_s = now_s;
-      resend(k.pdu, k.group);
-      ++repeats_sent_;
-    }
-}
-
-bool DetonationLedger::first_time(const net::DetonationPdu& p) {
-  const std::uint64_t k = key_of(p);
-  if (!seen_.insert(k).second) {
-    ++repeats_ignored_;
-    return false;
-  }
+void DetonationLedger::remember(std::uint64_t k) {
   seen_order_.push_back(k);
   if (seen_order_.size() > kMaxSeen) {
     seen_.erase(seen_order_.front());
     seen_order_.pop_front();
   }
+}
+
+void DetonationLedger::sent(const net::DetonationPdu& p, std::uint32_t group, double now_s) {
+  const std::uint64_t k = key_of(p);
+  if (seen_.find(k) == seen_.end()) remember(k);
+  keep(p, group, now_s, k, Role::Own);
+}
+
+bool DetonationLedger::received(const net::DetonationPdu& p, double now_s, bool adoptable, std::uint32_t group) {
+  const std::uint64_t k = key_of(p);
+  const auto it = seen_.find(k);
+  if (it != seen_.end()) {
+    ++repeats_ignored_;
+    if (it->second >= 0) {
+      Kept& e = kept_[static_cast<std::size_t>(it->second)];
+      if (e.role != Role::Own) {  // someone repeats it: watch (an adopter stands down)
+        e.last_s = now_s;
+        e.role = Role::Held;
+      }
+    }
+    return false;
+  }
+  remember(k);
+  if (adoptable) keep(p, group, now_s, k, Role::Held);
+  else seen_[k] = -1;
   return true;
+}
+
+void DetonationLedger::resend_due(double now_s, double heartbeat_s, double live_s,
+                                  const std::function<void(const net::DetonationPdu&, std::uint32_t)>& resend) {
+  for (auto& k : kept_) {
+    const double quiet = now_s - k.last_s;
+    if (quiet < heartbeat_s) continue;
+    if (k.role == Role::Held) {
+      if (quiet < heartbeat_s * (2 + rank(k.pdu.firing_entity_id, now_s, live_s))) continue;
+      k.role = Role::Adopted;
+      ++adoptions_;
+    }
+    k.last_s = now_s;
+    resend(k.pdu, k.group);
+    ++(k.role == Role::Own ? repeats_sent_ : adopted_sent_);
+  }
 }
 
 }  // namespace npsnet::node

@@ -49,6 +49,8 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
       ownership_(net::EntityId{static_cast<std::uint16_t>(o.site), static_cast<std::uint16_t>(o.app), 0}),
       cultural_app_(static_cast<std::uint16_t>(kCulturalAppBit | o.app)) {
   if (!session_) throw std::runtime_error("--net: no session");
+  detonations_.set_identity(static_cast<std::uint16_t>(o.site), static_cast<std::uint16_t>(o.app));
+  drop_detonations_s_ = test_drop_detonations_from_env();
   munitions_ = o.munitions ? o.munitions : std::make_shared<const MunitionTable>(MunitionTable::load(MunitionTable::default_file()));
   world::World& w = sim_.world();
   auto& ents = w.ents;
@@ -126,7 +128,12 @@ std::string NetBridge::summary() const {
   if (detonations_.kept() || detonations_.repeats_ignored())
     r += "\n  net: detonations kept " + std::to_string(detonations_.kept()) + " (repeated " +
          std::to_string(detonations_.repeats_sent()) + " times, " + std::to_string(detonations_.dropped_kept()) +
-         " past the cap); repeats received and ignored " + std::to_string(detonations_.repeats_ignored());
+         " past the cap); repeats received and ignored " + std::to_string(detonations_.repeats_ignored()) +
+         "; adopted " + std::to_string(detonations_.adoptions()) + " of silent nodes (sent " +
+         std::to_string(detonations_.adopted_sent()) + " times)";
+  if (dropped_detonations_)
+    r += "\n  net: test hook NPSNET_TEST_DROP_DETONATIONS_S dropped " + std::to_string(dropped_detonations_) +
+         " received Detonation PDUs";
   if (fixed_unnumbered_)
     r += "\n  net: " + std::to_string(fixed_unnumbered_) + " fixed-object changes not published (index past 65534)";
   r += remotes_.listing(clock_s());
@@ -168,6 +175,8 @@ void NetBridge::receive(std::span<const std::uint8_t> datagram, double arrival_s
                                 [&](const net::StartResumePdu& p) { on_start_resume(p); },
                                 [&](const net::RemoveEntityPdu& p) { on_remove_entity(p); },
                                 [&](const net::EntityStatePdu& p) {
+                                  detonations_.heard(p.entity_id.site, p.entity_id.application & ~kCulturalAppBit,
+                                                     arrival_s);  // a live node (adoption rank)
                                   if (!process) return;
                                   if (p.entity_type.kind == dis::kEntityKindCultural &&
                                       (p.entity_id.application & kCulturalAppBit))
@@ -179,7 +188,11 @@ void NetBridge::receive(std::span<const std::uint8_t> datagram, double arrival_s
                                   if (process) remotes_.on_update(p, arrival_s, utc);
                                 },
                                 [&](const net::FirePdu& p) { on_fire(p); },
-                                [&](const net::DetonationPdu& p) { on_detonation(p); },
+                                [&](const net::DetonationPdu& p) {
+                                  // An adopted round we repeat comes back with the firing node's id:
+                                  // our own datagram, not someone else repeating it.
+                                  if (!session_->sent_by_us(datagram)) on_detonation(p, arrival_s);
+                                },
                                 [&](const net::CollisionPdu& p) { on_collision(p); }});
   if (!clash_reported_ && session_->counters().own_id_clash > 0) report_clash();
 }
@@ -498,7 +511,7 @@ void NetBridge::publish_detonations(const TickReport& r) {
     session_->send_to(group, pdu);
     detonations_.sent(pdu, group, now_s_);
   }
-  detonations_.resend_due(now_s_, remotes_.thresholds().heartbeat_s,
+  detonations_.resend_due(now_s_, remotes_.thresholds().heartbeat_s, remotes_.thresholds().timeout_s,
                           [&](const net::DetonationPdu& pdu, std::uint32_t group) { session_->send_to(group, pdu); });
 }
 

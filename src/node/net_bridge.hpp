@@ -170,7 +170,7 @@ class NetBridge {
   void on_cultural(const net::EntityStatePdu& p);
   void on_collision(const net::CollisionPdu& p);
   void on_fire(const net::FirePdu& p);
-  void on_detonation(const net::DetonationPdu& p);
+  void on_detonation(const net::DetonationPdu& p, double arrival_s);
   void publish_vehicles();
   void digest_entity_state();  // es_ into es_digest_
   void publish_collisions(const TickReport& r);
@@ -237,6 +237,8 @@ class NetBridge {
   std::uint64_t fixed_unnumbered_ = 0;   // changed objects past the last cultural entity number
   std::unordered_map<int, std::uint16_t> fire_event_;  // munition index -> event number
   DetonationLedger detonations_;  // ours repeated every heartbeat; received ones applied once
+  double drop_detonations_s_ = 0;  // test hook NPSNET_TEST_DROP_DETONATIONS_S (bridge_options.hpp)
+  std::uint64_t dropped_detonations_ = 0;
   std::uint16_t event_number_ = 0;
   world::Changes inject_;  // reused for injected changes
   std::function<void(const TickReport&)> chained_on_tick_;

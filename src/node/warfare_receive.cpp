@@ -38,12 +38,20 @@ void NetBridge::on_fire(const net::FirePdu& p) {
   log_.write(ev);
 }
 
-void NetBridge::on_detonation(const net::DetonationPdu& p) {
-  if (!detonations_.first_time(p)) return;  // a repeat (heartbeat repair) or a duplicated datagram
+void NetBridge::on_detonation(const net::DetonationPdu& p, double arrival_s) {
+  if (drop_detonations_s_ > 0 && arrival_s - start_s_ < drop_detonations_s_) {
+    ++dropped_detonations_;  // the test hook: this datagram is "lost"
+    return;
+  }
   const world::World& w = sim_.world();
   const Eigen::Vector3d loc(p.location.x, p.location.y, p.location.z);
+  const Vec3 point = loc.allFinite() ? w.terrain.frame().from_ecef(vv(loc)) : Vec3(0, 0, 0);
+  // A round of another NPSNET node (a scenario vehicle fired it): kept for adoption (ledger).
+  const int firer = remotes_.index_of(p.firing_entity_id);
+  const bool adoptable = firer >= 0 && !w.ents.local[firer] && w.ents.node[firer] >= 1;
+  if (!detonations_.received(p, arrival_s, adoptable, point.allFinite() ? group_at(point) : net::Session::kDestination))
+    return;  // a repeat (heartbeat repair, adoption) or a duplicated datagram
   if (!loc.allFinite()) return;
-  const Vec3 point = w.terrain.frame().from_ecef(vv(loc));
   if (!point.allFinite() || !w.terrain.contains(point.x(), point.y())) return;
   const MunitionEffect fx = munitions_->effect(p.descriptor, w.kinds);
   if (fx.kind < 0) return;  // the kinds file has no munition at all

@@ -97,6 +97,8 @@ class Session {
     return parser_.parse(datagram, counters_, visitor);
   }
 
+  // Whether `datagram` is one of the last datagrams we sent (same bytes): our own echo.
+  bool sent_by_us(std::span<const std::uint8_t> datagram) const noexcept { return sent_recently(datagram); }
   // An entity id of ours: (site, application, entity).
   EntityId entity_id(std::uint16_t entity) const noexcept {
     return {config_.site, config_.application, entity};
