@@ -39,6 +39,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "bench_args.hpp"
 #include "net/net.hpp"
 
 namespace {
@@ -243,16 +244,9 @@ std::string row(const Result& r) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool quick = false;
-  std::string csv = std::string(NPSNET_SOURCE_DIR) + "/bench/results/aoi.csv";
-  for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--quick")) quick = true;
-    else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
-    else {
-      std::fprintf(stderr, "usage: bench_aoi [--quick] [--csv FILE]\n");
-      return 2;
-    }
-  }
+  const auto [quick, csv] = npsnet::bench::bench_args(argc, argv, "bench_aoi: the area of interest's traffic and entry latency",
+                                                      "1,000 and 5,000 entities only, no CSV",
+                                                      std::string(NPSNET_SOURCE_DIR) + "/bench/results/aoi.csv");
   const std::vector<int> sizes = quick ? std::vector<int>{1000, 5000} : std::vector<int>{1000, 2000, 5000, 10000, 20000};
   const std::uint16_t port = static_cast<std::uint16_t>(20000 + ::getpid() % 40000);
   std::vector<Result> out;

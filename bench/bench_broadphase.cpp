@@ -20,6 +20,7 @@
 #include <random>
 
 #include "collision/collision.hpp"
+#include "crowd_scene.hpp"
 #include "world/pose.hpp"
 #include "world/scenario.hpp"
 
@@ -61,21 +62,7 @@ Scene& scene(int n) {
   Scene& s = cache[n];
   s.w = base_world();
   s.w.ents = world::Entities{};
-  const double W = s.w.terrain.width_m(), D = s.w.terrain.depth_m();
-  std::mt19937_64 rng(20261123u + static_cast<uint64_t>(n));
-  std::uniform_real_distribution<double> u(0, 1);
-  const char* kinds[] = {"m1a1", "bmp", "hmmwv"};
-  const double cx = 0.5 * W, cy = 0.5 * D;  // the crowded 2 km square's centre
-  for (int i = 0; i < n; ++i) {
-    double x, y;
-    if (i % 2) x = cx + (u(rng) - 0.5) * 2000, y = cy + (u(rng) - 0.5) * 2000;
-    else x = u(rng) * W, y = u(rng) * D;
-    const int k = s.w.kinds.find(kinds[i % 3]);
-    const int e = s.w.ents.add("v" + std::to_string(i), k, Vec3(x, y, s.w.terrain.height(x, y)),
-                               static_cast<float>(u(rng) * 360), static_cast<float>(s.w.kinds[k].radius_m));
-    const Vec2 d = heading_to_dir(s.w.ents.heading_deg[e]);
-    s.w.ents.vel[e] = Vec3(d.x(), d.y(), 0) * (u(rng) * 15);
-  }
+  bench::add_crowd(s.w, n);
   for (size_t o = 0; o < s.w.fixed.size(); ++o) {
     s.fc.push_back(world::fixed_centre(s.w, o));
     s.fr.push_back(static_cast<float>(world::fixed_radius(s.w, o)));

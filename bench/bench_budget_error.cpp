@@ -1,26 +1,38 @@
 // bench_budget_error: what the collision budget of the scene-aware auto tier (collision.hpp)
-// costs in accuracy (issue 13). A crowd of background vehicles (m1a1, bmp, hmmwv; no snapshots,
-// nobody driving, no viewer: every pair may be lowered) on a flat 2 km world, one tick of 0.1 s
-// (no running episodes), detected with tier auto at budgets from 0 to "ample"; each time the
-// contacts are compared with FCL as the oracle, as bench_accuracy does: for every pair whose
-// bounding spheres meet in the tick, FCL's exact mesh-mesh distance on the same triangles,
-// advanced conservatively to the first time within 1 um (the point: the middle of FCL's nearest
-// points). Pairs that come within 1 mm without touching have no verdict and are left out.
-// Columns: budget_ms (modelled narrow-phase time allowed), pairs (needing a narrow phase),
-// lowered (pairs given a tier below their exact one), contacts, truth (FCL contacts), false_pos
-// (our contacts FCL does not find), misses (FCL contacts we do not find), point error median /
-// p95 (m, over the contacts both find that do not touch from the tick's start), detect_ms (our detect, wall, one thread).
-// Usage: bench_budget_error [vehicles] [side_m] [--csv FILE]  (default 3000 600, bench/results/budget_error.csv)
+// costs in accuracy, and what it saves in the crowd (issue 13). Three parts:
+//
+// vehicles (default): a crowd of background vehicles (m1a1, bmp, hmmwv; no snapshots, nobody
+//   driving, no viewer: every pair may be lowered) on a flat 2 km world, one tick of 0.1 s (no
+//   running episodes), detected with tier auto at budgets from 0 to "ample"; each time the
+//   contacts are compared with FCL as the oracle (fcl_oracle.hpp): for every pair whose bounding
+//   spheres meet in the tick, FCL's exact mesh-mesh distance on the same triangles, advanced
+//   conservatively to the first time within 1 um (the point: the middle of FCL's nearest points).
+//   Pairs that come within 1 mm without touching have no verdict and are left out.
+// --fixed: the same for vehicle-vs-fixed encounters: the vehicles among trees, telephone poles,
+//   buildings, bunkers, watertowers, bushes and rocks (FCL on the shape each object collides as:
+//   a tree's or pole's trunk, the others' models); also the error table per tier (thesis, and the
+//   continuous method held at sphere, box, hull, mesh, and auto with an ample budget).
+// --crowd N: the 100,000-vehicle crowd of bench_broadphase (crowd_scene.hpp) on the default
+//   world: the full continuous step (one thread) with the default budget and without one (ample):
+//   the first tick (every contact new) and the ticks after (vehicles moved back and forth), ms
+//   and the pairs each tier decided.
+// Columns (vehicles, --fixed): budget_ms, pairs (needing a narrow phase, with a verdict), lowered
+// (pairs given a tier below their exact one), contacts, truth (FCL contacts), false_pos, misses,
+// point error median / p95 (m, over the contacts both find that do not touch from the tick's
+// start), detect_ms (our detect, wall, one thread).
+// Usage: bench_budget_error [--vehicles N] [--side M] [--fixed] [--crowd N] [--csv FILE]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <map>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
+
+#include <CLI/CLI.hpp>
 
 #include "support/fixture.hpp"
 
@@ -30,14 +42,15 @@ int main() {
   return 2;
 }
 #else
-#include <fcl/narrowphase/distance.h>
-
+#include "crowd_scene.hpp"
 #include "fcl_oracle.hpp"
 #include "support/fcl_mesh.hpp"
 
 using namespace npsnet;
 
 namespace {
+
+using Key = std::tuple<int, int, bool>;  // vehicle a, b (entity or fixed object), b_fixed
 
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return NAN;
@@ -50,104 +63,240 @@ struct Truth {
   Vec3 point{0, 0, 0};
 };
 
-}  // namespace
+Key key_of(int a, int b, bool fixed) { return fixed ? Key{a, b, true} : Key{std::min(a, b), std::max(a, b), false}; }
 
-int main(int argc, char** argv) {
-  int n = 3000;
-  double side = 600;
-  std::string csv = std::string(NPSNET_SOURCE_DIR) + "/bench/results/budget_error.csv";
-  std::vector<std::string> pos;
-  for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
-    else pos.push_back(argv[i]);
+// FCL's answer for every pair an ample budget sends to the narrow phase (vehicle pairs, or
+// vehicle-vs-fixed pairs when `fixed`).
+std::map<Key, Truth> oracle(const world::World& w, const std::vector<collision::TierChoice>& pairs, bool fixed, double dt) {
+  const std::vector<collision::Shape> shapes = collision::make_shapes(w);
+  std::vector<std::shared_ptr<test::FclMesh>> meshes;
+  for (const auto& s : shapes) meshes.push_back(test::fcl_mesh(s));
+  auto model = [&](int e) { return w.kinds[w.ents.kind[e]].models[w.ents.state[e]]; };
+  const auto& ents = w.ents;
+  std::map<Key, Truth> truth;
+  for (const auto& c : pairs) {
+    if (c.b_fixed != fixed) continue;
+    const int a = c.a, b = c.b;
+    const Mat3 ra = world::pose_rotation(ents.heading_deg[a], ents.pitch_deg[a], ents.roll_deg[a]);
+    bench::FclToi o;
+    if (fixed) {
+      const int mb = w.kinds[w.fixed.kind[b]].models[w.fixed.state[b]];
+      o = bench::fcl_toi(meshes[model(a)], ra, ents.pos[a], ents.vel[a] * dt, meshes[mb],
+                         world::pose_rotation(w.fixed.heading_deg[b], 0, 0), w.fixed.pos[b], Vec3::Zero());
+    } else {
+      o = bench::fcl_toi(meshes[model(a)], ra, ents.pos[a], ents.vel[a] * dt, meshes[model(b)],
+                         world::pose_rotation(ents.heading_deg[b], ents.pitch_deg[b], ents.roll_deg[b]), ents.pos[b],
+                         ents.vel[b] * dt);
+    }
+    Truth tr;
+    tr.hit = o.hit, tr.started_inside = o.started_inside, tr.point = o.point;
+    tr.verdict = !(o.graze || !o.converged);
+    truth[key_of(a, b, fixed)] = tr;
   }
-  if (pos.size() > 0) n = std::stoi(pos[0]);
-  if (pos.size() > 1) side = std::stod(pos[1]);
-  const double dt = 0.1;
+  return truth;
+}
+
+struct Score {
+  int contacts = 0, fp = 0, miss = 0, lowered = 0;
+  std::vector<double> err;
+  double ms = 0;
+};
+
+// One tick of `det` on w, scored against the truth (pairs without a verdict left out).
+Score score(collision::Detector& det, const world::World& w, const std::map<Key, Truth>& truth, bool fixed) {
+  std::vector<collision::Contact> out;
+  const auto t0 = std::chrono::steady_clock::now();
+  det.detect(w, out);
+  Score s;
+  s.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  for (const auto& c : det.tier_choices()) s.lowered += c.b_fixed == fixed && c.chosen < c.exact;
+  std::map<Key, const collision::Contact*> ours;
+  for (const auto& c : out) ours[key_of(c.a, c.b, c.b_fixed)] = &c;
+  for (const auto& [key, tr] : truth) {
+    if (!tr.verdict) continue;
+    const auto it = ours.find(key);
+    const bool we = it != ours.end();
+    s.contacts += we;
+    if (we && !tr.hit) ++s.fp;
+    if (!we && tr.hit) ++s.miss;
+    if (we && tr.hit && !tr.started_inside) s.err.push_back((it->second->point - tr.point).norm());
+  }
+  return s;
+}
+
+// Vehicles placed apart from each other (their thesis spheres, times `spacing`, apart where they
+// end the tick), 10-25 m/s: the contacts are the ones made in the tick. With `objects`, as many
+// fixed objects first, the kinds in turn, and the vehicles placed so that their thesis spheres
+// and the objects' are kStartSpacing apart where they start the tick (the true shapes, at most
+// 1/0.9 of the thesis spheres, apart: no contact from the tick's start) and kEndSpacing where
+// they end it (so that some meet in the tick).
+constexpr double kStartSpacing = 1.12, kEndSpacing = 0.8;
+world::World scene(int n, double side, int objects, double spacing) {
   world::World w = test::flat_world();
   std::mt19937_64 rng(13);
   std::uniform_real_distribution<double> u(0, 1);
-  const char* kinds[] = {"m1a1", "bmp", "hmmwv"};
   const double x0 = 1000 - side / 2;
-  // Placed apart (their thesis spheres apart where they end the tick), 10-25 m/s: the contacts
-  // are the ones made in the tick.
   std::vector<Vec2> at;
   std::vector<double> rad;
-  for (int i = 0, tries = 0; i < n && tries < 100 * n; ++tries) {
-    const Vec2 p(x0 + side * u(rng), x0 + side * u(rng));
+  // back: where the vehicle starts the tick, from its end (clear there too)
+  auto free_spot = [&](double r, Vec2& p, const Vec2& back = Vec2::Zero()) {
+    for (int tries = 0; tries < 100; ++tries) {
+      p = Vec2(x0 + side * u(rng), x0 + side * u(rng));
+      bool apart = true;
+      for (size_t j = 0; j < at.size() && apart; ++j)
+        apart = back == Vec2::Zero() ? (at[j] - p).norm() >= spacing * (r + rad[j])
+                                     : (at[j] - p).norm() >= kEndSpacing * (r + rad[j]) &&
+                                           (at[j] - p - back).norm() >= kStartSpacing * (r + rad[j]);
+      if (apart) return true;
+    }
+    return false;
+  };
+  const char* fixed_kinds[] = {"tree", "telephone_pole", "building", "bunker", "watertower", "bush", "rock"};
+  for (int i = 0; i < objects; ++i) {
+    const char* k = fixed_kinds[i % 7];
+    const double r = w.kinds[w.kinds.find(k)].radius_m;
+    Vec2 p;
+    if (!free_spot(r, p)) continue;
+    const int o = test::add_fixed(w, "o" + std::to_string(i), k, p.x(), p.y());
+    w.fixed.heading_deg[o] = static_cast<float>(360 * u(rng));
+    at.push_back(p), rad.push_back(r);
+  }
+  const char* kinds[] = {"m1a1", "bmp", "hmmwv"};
+  for (int i = 0; i < n; ++i) {
     const double r = w.kinds[w.kinds.find(kinds[i % 3])].radius_m;
-    bool apart = true;
-    for (size_t j = 0; j < at.size() && apart; ++j) apart = (at[j] - p).norm() >= r + rad[j];
-    if (!apart) continue;
+    Vec2 p;
+    if (objects > 0) {  // vehicle-vs-fixed: clear at both ends of the tick (heading, speed drawn first)
+      const double h = 360 * u(rng), v = 10 + 15 * u(rng);
+      if (!free_spot(r, p, -heading_to_dir(h) * v * 0.1)) continue;
+      const int e = test::add_vehicle(w, "bg" + std::to_string(i), kinds[i % 3], p.x(), p.y(), h, v);
+      w.ents.snapshots[e] = 0;
+      at.push_back(p), rad.push_back(r);
+      continue;
+    }
+    if (!free_spot(r, p)) continue;
     const int e = test::add_vehicle(w, "bg" + std::to_string(i), kinds[i % 3], p.x(), p.y(), 360 * u(rng), 10 + 15 * u(rng));
     w.ents.snapshots[e] = 0;
-    at.push_back(p), rad.push_back(r), ++i;
+    at.push_back(p), rad.push_back(r);
   }
   test::index_fixed(w);
-  // Shapes and FCL meshes per model.
-  std::vector<collision::Shape> shapes;
-  std::vector<std::shared_ptr<test::FclMesh>> meshes;
-  for (int m = 0; m < w.models.size(); ++m) {
-    shapes.push_back(collision::make_shape(w.models[m]));
-    meshes.push_back(test::fcl_mesh(shapes.back()));
-  }
-  auto model = [&](int e) { return w.kinds[w.ents.kind[e]].models[w.ents.state[e]]; };
+  return w;
+}
+
+int accuracy(int n, double side, bool fixed, std::string csv) {
+  const double dt = 0.1;
+  const world::World w = scene(n, side, fixed ? n : 0, 1.0);
   // The pairs that need a narrow phase: the tier choices of an ample budget.
   collision::Detector ample(collision::options_from("continuous", "auto", dt));
   ample.set_budget_ms(1e9);
   std::vector<collision::Contact> out;
   ample.detect(w, out);
-  const auto pairs = ample.tier_choices();
-  // The truth for each pair: FCL distance, conservative advancement over the tick.
-  std::map<std::pair<int, int>, Truth> truth;
-  int no_verdict = 0, truth_hits = 0, started_inside = 0;
-  for (const auto& c : pairs) {
-    const int a = std::min(c.a, c.b), b = std::max(c.a, c.b);
-    Truth tr;
-    const Mat3 ra = world::pose_rotation(w.ents.heading_deg[a], w.ents.pitch_deg[a], w.ents.roll_deg[a]);
-    const Mat3 rb = world::pose_rotation(w.ents.heading_deg[b], w.ents.pitch_deg[b], w.ents.roll_deg[b]);
-    const bench::FclToi o = bench::fcl_toi(meshes[model(a)], ra, w.ents.pos[a], w.ents.vel[a] * dt, meshes[model(b)], rb,
-                                           w.ents.pos[b], w.ents.vel[b] * dt);
-    tr.hit = o.hit, tr.started_inside = o.started_inside, tr.point = o.point;
-    const bool near = o.graze || !o.converged;
-    tr.verdict = !near;
-    no_verdict += !tr.verdict;
-    truth_hits += tr.hit && tr.verdict;
-    started_inside += tr.hit && tr.started_inside;
-    truth[{a, b}] = tr;
+  const auto truth = oracle(w, ample.tier_choices(), fixed, dt);
+  int verdicts = 0, truth_hits = 0, started_inside = 0;
+  for (const auto& [k, tr] : truth) {
+    verdicts += tr.verdict;
+    truth_hits += tr.verdict && tr.hit;
+    started_inside += tr.verdict && tr.hit && tr.started_inside;
   }
+  if (csv.empty()) csv = std::string(NPSNET_SOURCE_DIR) + "/bench/results/budget_error" + (fixed ? "_fixed" : "") + ".csv";
   std::ofstream f(csv);
   f << "budget_ms,pairs,lowered,contacts,truth,false_pos,misses,point_err_median_m,point_err_p95_m,detect_ms\n";
-  std::printf("%d vehicles in %.0f m x %.0f m: %zu pairs need a narrow phase, FCL: %d touch (%d from the tick's start: "
-              "no point error), %d without verdict\n", n, side, side, pairs.size(), truth_hits, started_inside, no_verdict);
+  std::printf("%d vehicles%s in %.0f m x %.0f m: %zu %s pairs need a narrow phase, FCL: %d touch (%d from the tick's "
+              "start: no point error), %zu without verdict\n", n, fixed ? " and fixed objects" : "", side, side,
+              truth.size(), fixed ? "vehicle-fixed" : "vehicle-vehicle", truth_hits, started_inside, truth.size() - verdicts);
   std::printf("%10s %8s %8s %9s %9s %7s %12s %12s %10s\n", "budget_ms", "lowered", "contacts", "false_pos", "misses",
               "truth", "err_med_m", "err_p95_m", "detect_ms");
   for (double budget : {0.0, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0, 300.0}) {
     collision::Detector det(collision::options_from("continuous", "auto", dt));
     det.set_budget_ms(budget);
-    out.clear();
-    const auto t0 = std::chrono::steady_clock::now();
-    det.detect(w, out);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    int fp = 0, miss = 0, contacts = 0, lowered = 0;
-    for (const auto& c : det.tier_choices()) lowered += c.chosen < c.exact;
-    std::vector<double> err;
-    std::map<std::pair<int, int>, const collision::Contact*> ours;
-    for (const auto& c : out) ours[{std::min(c.a, c.b), std::max(c.a, c.b)}] = &c;
-    for (const auto& [key, tr] : truth) {
-      if (!tr.verdict) continue;
-      const auto it = ours.find(key);
-      const bool we = it != ours.end();
-      contacts += we;
-      if (we && !tr.hit) ++fp;
-      if (!we && tr.hit) ++miss;
-      if (we && tr.hit && !tr.started_inside) err.push_back((it->second->point - tr.point).norm());
-    }
-    std::printf("%10.1f %8d %8d %9d %9d %7d %12.4g %12.4g %10.2f\n", budget, lowered, contacts, fp, miss, truth_hits,
-                percentile(err, 0.5), percentile(err, 0.95), ms);
-    f << budget << ',' << pairs.size() - no_verdict << ',' << lowered << ',' << contacts << ',' << truth_hits << ','
-      << fp << ',' << miss << ',' << percentile(err, 0.5) << ',' << percentile(err, 0.95) << ',' << ms << '\n';
+    const Score s = score(det, w, truth, fixed);
+    std::printf("%10.1f %8d %8d %9d %9d %7d %12.4g %12.4g %10.2f\n", budget, s.lowered, s.contacts, s.fp, s.miss,
+                truth_hits, percentile(s.err, 0.5), percentile(s.err, 0.95), s.ms);
+    f << budget << ',' << verdicts << ',' << s.lowered << ',' << s.contacts << ',' << truth_hits << ',' << s.fp << ','
+      << s.miss << ',' << percentile(s.err, 0.5) << ',' << percentile(s.err, 0.95) << ',' << s.ms << '\n';
+  }
+  if (!fixed) return 0;
+  // The error table per tier, vehicle-vs-fixed.
+  const std::string tcsv = std::string(NPSNET_SOURCE_DIR) + "/bench/results/accuracy_fixed.csv";
+  std::ofstream t(csv.find("budget_error_fixed.csv") != std::string::npos ? tcsv : csv + ".tiers.csv");
+  t << "method,pairs,truth,contacts,false_pos,misses,point_err_median_m,point_err_p95_m,detect_ms\n";
+  std::printf("\n| method | misses | false positives | contact-point error median / p95 (m) | detect ms |\n|---|---|---|---|---|\n");
+  const std::pair<const char*, const char*> methods[] = {{"thesis", "auto"}, {"continuous", "sphere"}, {"continuous", "box"},
+                                                         {"continuous", "hull"}, {"continuous", "mesh"}, {"continuous", "auto"}};
+  for (const auto& [m, tier] : methods) {
+    collision::Detector det(collision::options_from(m, tier, dt));
+    det.set_budget_ms(1e9);
+    const Score s = score(det, w, truth, fixed);
+    const std::string name = std::string(m) == "thesis" ? "thesis" : std::string(m) + "-" + tier;
+    std::printf("| %s | %d / %d | %d / %d | %.3g / %.3g | %.2f |\n", name.c_str(), s.miss, truth_hits, s.fp,
+                verdicts - truth_hits, percentile(s.err, 0.5), percentile(s.err, 0.95), s.ms);
+    t << name << ',' << verdicts << ',' << truth_hits << ',' << s.contacts << ',' << s.fp << ',' << s.miss << ','
+      << percentile(s.err, 0.5) << ',' << percentile(s.err, 0.95) << ',' << s.ms << '\n';
   }
   return 0;
+}
+
+// The full continuous step in the crowd, with the default budget and without one.
+int crowd(int n, std::string csv) {
+  auto sc = world::load_scenario(std::string(NPSNET_SOURCE_DIR) + "/scenarios/default.toml");
+  world::World w = world::build_world(sc);
+  w.ents = world::Entities{};
+  bench::add_crowd(w, n);
+  for (auto& s : w.ents.snapshots) s = 0;  // background traffic: nobody snapshots, drives or watches it
+  const double dt = 0.1;
+  std::vector<Vec3> step;
+  for (size_t e = 0; e < w.ents.size(); ++e) step.push_back(w.ents.vel[e] * dt);
+  if (csv.empty()) csv = std::string(NPSNET_SOURCE_DIR) + "/bench/results/crowd_budget.csv";
+  std::ofstream f(csv);
+  f << "vehicles,budget_ms,tick,ms,contacts,narrow_pairs,lowered,decided_sphere,decided_box,decided_hull,decided_mesh\n";
+  std::printf("| budget (ms) | tick | ms | contacts | pairs given a tier | lowered | decided by sphere / box / hull / mesh |\n"
+              "|---|---|---|---|---|---|---|\n");
+  for (double budget : {world::kDefaultCollisionBudgetMs, 1e9}) {
+    collision::Detector det(collision::options_from("continuous", "auto", dt));
+    det.set_budget_ms(budget);
+    std::vector<double> later;
+    for (int k = 0; k < 4; ++k) {
+      if (k > 0)
+        for (size_t e = 0; e < w.ents.size(); ++e) w.ents.pos[e] += (k & 1 ? 1.0 : -1.0) * step[e];
+      const collision::DetectStats before = det.stats();
+      std::vector<collision::Contact> out;
+      const auto t0 = std::chrono::steady_clock::now();
+      det.detect(w, out);
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      const collision::DetectStats& s = det.stats();
+      int64_t d[5];
+      for (int t = 0; t < 5; ++t) d[t] = s.tier_decided[t] - before.tier_decided[t];
+      const long long lowered = s.tier_lowered - before.tier_lowered;
+      const std::string b = budget > 1e8 ? "none" : std::to_string(budget).substr(0, 4);
+      std::printf("| %s | %d | %.1f | %zu | %zu | %lld | %lld / %lld / %lld / %lld |\n", b.c_str(), k, ms, out.size(),
+                  det.tier_choices().size(), lowered, (long long)d[1], (long long)d[2], (long long)d[3], (long long)d[4]);
+      f << n << ',' << b << ',' << k << ',' << ms << ',' << out.size() << ',' << det.tier_choices().size() << ',' << lowered
+        << ',' << d[1] << ',' << d[2] << ',' << d[3] << ',' << d[4] << '\n';
+      std::fflush(stdout);
+    }
+    for (size_t e = 0; e < w.ents.size(); ++e) w.ents.pos[e] -= step[e];  // back where it started
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int n = 3000, crowd_n = 0;
+  double side = 600;
+  bool fixed = false;
+  std::string csv;
+  CLI::App app{"bench_budget_error: accuracy against the collision budget (FCL oracle), and the crowd's step"};
+  app.add_option("--vehicles", n, "vehicles in the square")->capture_default_str();
+  app.add_option("--side", side, "the square's side (m)")->capture_default_str();
+  app.add_flag("--fixed", fixed, "vehicle-vs-fixed encounters (and the error table per tier)");
+  app.add_option("--crowd", crowd_n, "the full continuous step in an N-vehicle crowd on the default world, with and without the budget");
+  app.add_option("--csv", csv, "where the CSV goes (default: bench/results/...)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  if (crowd_n > 0) return crowd(crowd_n, csv);
+  return accuracy(n, side, fixed, csv);
 }
 #endif

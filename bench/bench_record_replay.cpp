@@ -30,6 +30,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench_args.hpp"
 #include "net/net.hpp"
 #include "record/pcap_file.hpp"
 #include "record/recorder.hpp"
@@ -198,16 +199,8 @@ void print(const Row& r) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool quick = false;
-  std::string csv;
-  for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--quick")) quick = true;
-    else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
-    else {
-      std::fprintf(stderr, "usage: bench_record_replay [--quick] [--csv FILE]\n");
-      return 2;
-    }
-  }
+  const auto [quick, csv] = npsnet::bench::bench_args(argc, argv, "bench_record_replay: recorder loss and replay lateness",
+                                                      "fewer rates, shorter, no CSV", "");
   const fs::path dir = fs::temp_directory_path() / ("bench_record_replay-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   std::vector<Row> rows;

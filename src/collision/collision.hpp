@@ -74,6 +74,9 @@ inline const char* tier_name(Tier t) { return world::shape_tier_name(t); }
 // fixed objects and munitions are spheres (the thesis's bounding spheres, p. 9 and p. 15) and
 // vehicles go up to their polygon mesh (the thesis's L3 polygons, p. 15).
 Tier top_tier(const world::Kind& k);
+// The collision shape of every model of the world (index = model), as the continuous method
+// uses them: make_shape, or make_trunk for the states a kind gives a trunk radius.
+std::vector<Shape> make_shapes(const world::World& w);
 
 struct Options {
   Method method = Method::Continuous;

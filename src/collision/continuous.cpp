@@ -30,16 +30,21 @@ const char* method_of(Tier t, bool fixed) {
 
 }  // namespace
 
-void Detector::prepare_shapes(const world::World& w) {
-  if (static_cast<int>(shapes_.size()) == w.models.size()) return;
-  shapes_.clear();
-  for (int i = 0; i < w.models.size(); ++i) shapes_.push_back(make_shape(w.models[i]));
+std::vector<Shape> make_shapes(const world::World& w) {
+  std::vector<Shape> shapes;
+  for (int i = 0; i < w.models.size(); ++i) shapes.push_back(make_shape(w.models[i]));
   // Standing trunks: the states a kind gives a trunk radius collide as that cylinder.
   for (int k = 0; k < w.kinds.size(); ++k) {
     const world::Kind& kd = w.kinds[k];
     for (size_t s = 0; s < kd.trunk_radius_by_state.size() && s < kd.models.size(); ++s)
-      if (kd.trunk_radius_by_state[s] > 0) shapes_[kd.models[s]] = make_trunk(w.models[kd.models[s]], kd.trunk_radius_by_state[s]);
+      if (kd.trunk_radius_by_state[s] > 0) shapes[kd.models[s]] = make_trunk(w.models[kd.models[s]], kd.trunk_radius_by_state[s]);
   }
+  return shapes;
+}
+
+void Detector::prepare_shapes(const world::World& w) {
+  if (static_cast<int>(shapes_.size()) == w.models.size()) return;
+  shapes_ = make_shapes(w);
 }
 
 Motion Detector::motion(const world::World& w, int e) const {
