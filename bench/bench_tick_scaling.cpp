@@ -14,8 +14,8 @@
 // and the median CPU ms the process spent in the tick (all its threads; on a machine shared
 // with other work, wall time includes waiting for a core). The
 // 1- and 2-thread runs of each kind run the same ticks (their event logs are compared: they must
-// be the same bytes, else the bench stops). A DIS node numbers at most 32,767 entities of its
-// own (net/): above that the node cannot publish them all and only "net off" is measured.
+// be the same bytes, else the bench stops). Past 32,767 entities the node numbers its entities
+// under several DIS applications (node/ownership.hpp), so the whole tick is measured at every N.
 // Usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...]
 //   default N = 500 ... 200,000 -> bench/results/tick_scaling.csv; --quick: 500 and 5,000, no CSV.
 #include <unistd.h>
@@ -38,8 +38,6 @@
 using namespace npsnet;
 
 namespace {
-
-constexpr size_t kMaxOwnEntities = 32767;  // DIS entity numbers of one node (net_bridge.cpp)
 
 std::string slurp(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -129,12 +127,11 @@ int main(int argc, char** argv) {
     world::Scenario sc = base;
     sc.background_vehicles = n;
     const world::World w = world::build_world(sc);
-    const bool net = w.ents.size() <= kMaxOwnEntities;
     // Short runs at the largest N (a few minutes in all on the 2-core machine).
     const int ticks = n <= 5000 ? 41 : n <= 20000 ? 21 : n <= 50000 ? 11 : n <= 100000 ? 7 : 5;
     const int warm = n <= 50000 ? 5 : 3;
     std::vector<std::unique_ptr<Node>> nodes;  // [net off 1t, net off 2t, net 1t, net 2t]
-    for (int k = 0; k < (net ? 4 : 2); ++k)
+    for (int k = 0; k < 4; ++k)
       nodes.push_back(std::make_unique<Node>(w, sc, 1 + k % 2, k >= 2, "-" + std::to_string(k) + ".jsonl"));
     for (auto& nd : nodes)
       for (int i = 0; i < warm; ++i) nd->sim.tick();
@@ -148,9 +145,9 @@ int main(int argc, char** argv) {
     double med[4] = {0, 0, 0, 0}, mn[4] = {0, 0, 0, 0}, cpu[4] = {0, 0, 0, 0};
     for (size_t k = 0; k < nodes.size(); ++k)
       med[k] = nodes[k]->median(), mn[k] = nodes[k]->min(), cpu[k] = nodes[k]->cpu_median();
-    auto cell = [&](double v) { return net ? std::to_string(v) : std::string(); };  // empty: not measured
+    auto cell = [](double v) { return std::to_string(v); };
     std::printf("%8d %9zu %6d | %8.3f %8.3f %5.2f      | %8.3f %8.3f %5.2f      | %d\n", n, w.ents.size(), ticks,
-                med[2], med[3], net ? med[2] / med[3] : 0.0, med[0], med[1], med[0] / med[1], nodes[0]->collisions());
+                med[2], med[3], med[2] / med[3], med[0], med[1], med[0] / med[1], nodes[0]->collisions());
     std::fflush(stdout);
     if (out)
       out << n << ',' << w.ents.size() << ',' << warm << ',' << ticks << ',' << cell(med[2]) << ',' << cell(med[3])

@@ -1,6 +1,8 @@
 # Whole node tick (net in, dynamics, collision, response, apply, events, net out; no rendering)
 # against the number of vehicles on the default world, 1 and 2 threads (bench_tick_scaling ->
-# tick_scaling.csv; scene and method in bench/bench_tick_scaling.cpp).
+# tick_scaling.csv; scene and method in bench/bench_tick_scaling.cpp). tick_scaling_before.csv:
+# the same bench at c0e5295 (before net out's local-frame bound and the multi-application
+# numbering: every vehicle's geodesy every tick, whole tick only up to 20,000).
 #   gnuplot bench/results/tick_scaling.gp   (from the repository root)
 set terminal pngcairo size 1000,650 font "sans,11"
 set output "bench/results/tick_scaling.png"
@@ -19,5 +21,7 @@ plot "bench/results/tick_scaling.csv" skip 1 using 1:5 with linespoints pt 7 lw 
      "" skip 1 using 1:6 with linespoints pt 5 lw 2 title "whole tick (net in/out), 2 threads", \
      "" skip 1 using 1:7 with linespoints pt 6 lw 1 dt 2 title "net off, 1 thread", \
      "" skip 1 using 1:8 with linespoints pt 4 lw 1 dt 2 title "net off, 2 threads", \
+     "bench/results/tick_scaling_before.csv" skip 1 using 1:($5 > 0 ? $5 : 1/0) with linespoints pt 2 lw 1 lc rgb "gray60" title "whole tick, 1 thread, before (c0e5295)", \
+     "bench/results/tick_scaling.csv" skip 1 using 1:13 with lines lw 1 dt 4 lc rgb "dark-green" title "whole tick, 1 thread: CPU ms (machine shared)", \
      old(x) with lines lw 2 dt 3 lc rgb "gray40" title "old main: 0.5 us per vehicle (net off)", \
      frame60(x) with lines lw 1 lc rgb "red" title "16.7 ms (60 Hz)"

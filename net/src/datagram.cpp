@@ -93,8 +93,7 @@ DatagramParser::Step DatagramParser::step(std::span<const std::uint8_t> rest, Co
     reject(c, e);
     return s;
   }
-  if (filter_.ignore_own && origin.site == filter_.site &&
-      origin.application == filter_.application) {
+  if (filter_.ignore_own && origin.site == filter_.site && filter_.own_application(origin.application)) {
     ++(filter_.echo ? c.own_echo_ignored : c.own_id_clash);
     return s;
   }

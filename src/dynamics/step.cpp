@@ -159,10 +159,10 @@ void follow_terrain(world::World& w, int e) {
   const Vec2 r(f.y(), -f.x());  // right of forward
   const Vec2 c(ents.pos[e].x(), ents.pos[e].y());
   auto h = [&](const Vec2& p) { return w.terrain.height(p.x(), p.y()); };
-  const double hf = 0.5 * (h(c + f * half_len + r * half_wid) + h(c + f * half_len - r * half_wid));
-  const double hb = 0.5 * (h(c - f * half_len + r * half_wid) + h(c - f * half_len - r * half_wid));
-  const double hr = 0.5 * (h(c + f * half_len + r * half_wid) + h(c - f * half_len + r * half_wid));
-  const double hl = 0.5 * (h(c + f * half_len - r * half_wid) + h(c - f * half_len - r * half_wid));
+  // The four corners once each (they were sampled twice: same values, half the lookups).
+  const double fr = h(c + f * half_len + r * half_wid), fl = h(c + f * half_len - r * half_wid);
+  const double br = h(c - f * half_len + r * half_wid), bl = h(c - f * half_len - r * half_wid);
+  const double hf = 0.5 * (fr + fl), hb = 0.5 * (br + bl), hr = 0.5 * (fr + br), hl = 0.5 * (fl + bl);
   ents.pos[e].z() = 0.25 * (hf + hb + hr + hl);
   ents.pitch_deg[e] = static_cast<float>(rad2deg(std::atan2(hf - hb, 2 * half_len)));
   ents.roll_deg[e] = static_cast<float>(rad2deg(std::atan2(hl - hr, 2 * half_wid)));  // right side down +

@@ -54,9 +54,16 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
   munitions_ = o.munitions ? o.munitions : std::make_shared<const MunitionTable>(MunitionTable::load(MunitionTable::default_file()));
   world::World& w = sim_.world();
   auto& ents = w.ents;
-  if (ents.size() >= 0x8000)
-    throw std::runtime_error("--net: the scenario has " + std::to_string(ents.size()) +
-                             " entities; DIS entity numbers of this node go up to 32767");
+  // Entity numbers 1-32767 under each of our applications (ownership.hpp), with room for the
+  // rounds fired later: one block more than the scenario's entities need.
+  const int blocks = static_cast<int>(ents.size() / net::kEntitiesPerApplication) + 1;
+  if (o.app + (blocks - 1) * net::kApplicationStride >= kCulturalAppBit)
+    throw std::runtime_error("--net: the scenario has " + std::to_string(ents.size()) + " entities: numbered " +
+                             std::to_string(net::kEntitiesPerApplication) + " to an application from --app " +
+                             std::to_string(o.app) + " in steps of " + std::to_string(net::kApplicationStride) +
+                             ", they need " + std::to_string(blocks) + " applications, past 32767; give a smaller --app");
+  ownership_.set_application_blocks(blocks);
+  session_->set_application_blocks(static_cast<std::uint16_t>(blocks));
   for (size_t e = 0; e < ents.size(); ++e) {
     const auto mob = w.kinds[ents.kind[e]].mobility;
     if (mob == world::Mobility::Fixed || mob == world::Mobility::Munition) continue;
@@ -147,8 +154,7 @@ bool NetBridge::is_own_vehicle(int e) const {
 }
 
 int NetBridge::own_entity_of(const net::EntityId& id) const {
-  if (id.site != opt_.site || id.application != opt_.app) return -1;
-  const int e = static_cast<int>(id.entity) - 1;
+  const int e = ownership_.own_index(id);
   return is_own_vehicle(e) ? e : -1;
 }
 
@@ -249,7 +255,7 @@ void NetBridge::on_collision(const net::CollisionPdu& p) {
   // record the collision and the damage of both copies, as their owners do).
   int own = -1;
   bool third = false;
-  if (p.colliding_entity_id.site == opt_.site && p.colliding_entity_id.application == opt_.app) {
+  if (ours(p.colliding_entity_id)) {
     own = own_entity_of(p.colliding_entity_id);
     if (own < 0) return;
   } else {

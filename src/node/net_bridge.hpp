@@ -32,8 +32,10 @@
 //    body z), timestamp = the scenario time of the state (after the tick's step), the kind's
 //    DIS type, marking = scenario id, damage in appearance bits 3-4 (dis_mapping.hpp), DR
 //    algorithm RVW, sent when the DrPublisher says so (1 m /
-//    3 deg / 5 s heartbeat) or when the appearance changes. Entity number = entity index + 1
-//    (every node loads the same scenario, so indices agree). One PDU a datagram (Wireshark 4.0
+//    3 deg / 5 s heartbeat) or when the appearance changes. Entity id = (site,
+//    application + k * 4096, e % 32767 + 1) for entity index e, k = e / 32767 (ownership.hpp:
+//    a node may own more than the 32,767 numbers of one application; receivers bind an entity
+//    by its full id; every node loads the same scenario, so indices agree). One PDU a datagram (Wireshark 4.0
 //    decodes only the first PDU of a datagram), at most 128 a tick (the rest follow on the next
 //    ticks, round robin; a damage change never waits); NPSNET_DIS_PACK=1 packs a tick's Entity
 //    States several to a datagram (at most 1400 octets).
@@ -159,6 +161,8 @@ class NetBridge {
 
  private:
   net::EntityId own_id(int e) const { return ownership_.own_id(e); }
+  // Whether an id is (site, one of our applications): ours, whatever its number.
+  bool ours(const net::EntityId& id) const { return id.site == opt_.site && ownership_.own_application(id.application); }
   bool is_own_vehicle(int e) const;
   // Our own entity (vehicle) named by a received id, or -1.
   int own_entity_of(const net::EntityId& id) const;

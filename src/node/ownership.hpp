@@ -21,10 +21,31 @@ class Ownership {
     int own = -1, other = -1;
     Vec3 own_vel{0, 0, 0};
   };
-  // own_base: our (site, application); an own entity e has id (site, application, e + 1).
+  // own_base: our (site, application); an own entity e has id (site, application + k * 4096,
+  // e % 32767 + 1), k = e / 32767 (net::kEntitiesPerApplication, net::kApplicationStride):
+  // entity numbers 1-32767 under each application, so a node may own more than 32,767.
   explicit Ownership(net::EntityId own_base) : base_(own_base) { pending_.reserve(16); }
 
-  net::EntityId own_id(int e) const { return {base_.site, base_.application, static_cast<std::uint16_t>(e + 1)}; }
+  net::EntityId own_id(int e) const {
+    const int k = e / net::kEntitiesPerApplication;
+    return {base_.site, static_cast<std::uint16_t>(base_.application + k * net::kApplicationStride),
+            static_cast<std::uint16_t>(e % net::kEntitiesPerApplication + 1)};
+  }
+  // The entity index an id of ours names (any application of ours), or -1.
+  int own_index(const net::EntityId& id) const {
+    if (id.site != base_.site || !own_application(id.application) || id.entity < 1 ||
+        id.entity > net::kEntitiesPerApplication)
+      return -1;
+    const int k = (id.application - base_.application) / net::kApplicationStride;
+    return k * net::kEntitiesPerApplication + id.entity - 1;
+  }
+  bool own_application(std::uint16_t a) const {
+    const int d = static_cast<int>(a) - static_cast<int>(base_.application);
+    return d >= 0 && d % net::kApplicationStride == 0 && d / net::kApplicationStride < blocks_;
+  }
+  // Applications our entities are numbered under (1 up to 32,767 entities).
+  void set_application_blocks(int n) { blocks_ = n; }
+  int application_blocks() const { return blocks_; }
   // Whether this node decides contact c (records the cross-node ones it decides).
   bool decides(const world::World& w, const RemoteEntities& remotes, const collision::Contact& c);
   // The own side's velocity before the response of a decided cross-node contact, or `fallback`.
@@ -35,6 +56,7 @@ class Ownership {
 
  private:
   net::EntityId base_;
+  int blocks_ = 1;
   std::vector<Pending> pending_;
 };
 

@@ -33,7 +33,7 @@ double sim_seconds(const net::ClockTime& c) {
 
 bool NetBridge::addressed_to_us(const net::EntityId& r) const {
   return (r.site == opt_.site || r.site == net::kAllSites) &&
-         (r.application == opt_.app || r.application == net::kAllApplications);
+         (ownership_.own_application(r.application) || r.application == net::kAllApplications);
 }
 
 void NetBridge::acknowledge(const net::EntityId& to, std::uint16_t flag, std::uint16_t response, std::uint32_t request) {
@@ -84,7 +84,10 @@ void NetBridge::on_remove_entity(const net::RemoveEntityPdu& p) {
   int removed = 0;
   for (size_t i = 0; i < own_.size(); ++i) {
     const int e = own_[i];
-    if (removed_[i] || !(r.entity == net::kAllEntities || r.entity == e + 1)) continue;
+    const net::EntityId id = own_id(e);  // addressed: its application (or all) and number (or all)
+    if (removed_[i] || !(r.application == net::kAllApplications || r.application == id.application) ||
+        !(r.entity == net::kAllEntities || r.entity == id.entity))
+      continue;
     removed_[i] = 1;
     ++removed;
     world::EntityChange ch;  // out of our world at this tick's apply

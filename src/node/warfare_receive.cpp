@@ -59,7 +59,7 @@ void NetBridge::on_detonation(const net::DetonationPdu& p, double arrival_s) {
   int hit = -1;
   if (p.detonation_result == dis::kResultEntityImpact) {
     hit = own_entity_of(p.target_entity_id);
-    if (hit < 0 && !(p.target_entity_id.site == opt_.site && p.target_entity_id.application == opt_.app))
+    if (hit < 0 && !ours(p.target_entity_id))
       hit = remotes_.index_of(p.target_entity_id);
     if (hit >= 0 && !w.ents.active[hit]) hit = -1;
   }

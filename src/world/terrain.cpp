@@ -331,17 +331,6 @@ Terrain Terrain::load(const std::filesystem::path& file, const geo::Geodetic& or
   return has_crs ? load_warped(file, ds.get()) : load_local(file, ds.get(), origin);
 }
 
-double Terrain::height(double x, double y) const {
-  const double u = std::clamp(x / spacing_, 0.0, static_cast<double>(cols_ - 1));
-  const double v = std::clamp(y / spacing_, 0.0, static_cast<double>(rows_ - 1));
-  const int i = std::min(static_cast<int>(u), cols_ - 2);
-  const int j = std::min(static_cast<int>(v), rows_ - 2);
-  const double fx = u - i, fy = v - j;
-  const double h00 = post(i, j), h10 = post(i + 1, j), h01 = post(i, j + 1),
-               h11 = post(i + 1, j + 1);
-  return (h00 * (1 - fx) + h10 * fx) * (1 - fy) + (h01 * (1 - fx) + h11 * fx) * fy;
-}
-
 Vec3 Terrain::normal(double x, double y) const {
   const double u = std::clamp(x / spacing_, 0.0, static_cast<double>(cols_ - 1));
   const double v = std::clamp(y / spacing_, 0.0, static_cast<double>(rows_ - 1));

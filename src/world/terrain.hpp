@@ -4,6 +4,7 @@
 // its lower-left corner at `origin`. Heights are bilinear between posts; outside the map the
 // nearest edge post is used. Craters lower the posts inside their radius (the only mutation).
 #pragma once
+#include <algorithm>
 #include <filesystem>
 #include <vector>
 
@@ -28,7 +29,15 @@ class Terrain {
   // `origin` is used only when the raster has no coordinate system.
   static Terrain load(const std::filesystem::path& file, const geo::Geodetic& origin);
 
-  double height(double x, double y) const;  // bilinear
+  double height(double x, double y) const {  // bilinear (inline: the hottest call of a tick)
+    const double u = std::clamp(x / spacing_, 0.0, static_cast<double>(cols_ - 1));
+    const double v = std::clamp(y / spacing_, 0.0, static_cast<double>(rows_ - 1));
+    const int i = std::min(static_cast<int>(u), cols_ - 2);
+    const int j = std::min(static_cast<int>(v), rows_ - 2);
+    const double fx = u - i, fy = v - j;
+    const double h00 = post(i, j), h10 = post(i + 1, j), h01 = post(i, j + 1), h11 = post(i + 1, j + 1);
+    return (h00 * (1 - fx) + h10 * fx) * (1 - fy) + (h01 * (1 - fx) + h11 * fx) * fy;
+  }
   Vec3 normal(double x, double y) const;     // unit, from the bilinear surface's gradient
   bool contains(double x, double y) const {
     return x >= 0 && y >= 0 && x <= width_m() && y <= depth_m();

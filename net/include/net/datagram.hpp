@@ -30,12 +30,23 @@
 
 namespace net {
 
+// A node owning more entities than one application numbers (entity numbers 1-32767) numbers
+// them under several applications: block k (its entities k * 32767 ... k * 32767 + 32766) under
+// application + k * kApplicationStride, k < application_blocks. Receivers bind entities by
+// their full id, so every block is an ordinary application to them.
+inline constexpr std::uint16_t kEntitiesPerApplication = 32767, kApplicationStride = 0x1000;
+
 struct ReceiveFilter {
   bool filter_exercise = false;  // when true, only exercise_id passes
   std::uint8_t exercise_id = 1;
   bool ignore_own = false;       // when true, PDUs from (site, application) are dropped
   std::uint16_t site = 1;
   std::uint16_t application = 1;
+  std::uint16_t application_blocks = 1;  // ours: application + k * kApplicationStride, k < this
+  bool own_application(std::uint16_t a) const noexcept {
+    const int d = static_cast<int>(a) - static_cast<int>(application);
+    return d >= 0 && d % kApplicationStride == 0 && d / kApplicationStride < application_blocks;
+  }
   // Whether the datagram walked now is one we sent (our echo): its own PDUs count as
   // own_echo_ignored, else as own_id_clash (Session::parse sets it per datagram).
   bool echo = true;

@@ -103,6 +103,13 @@ class Session {
   EntityId entity_id(std::uint16_t entity) const noexcept {
     return {config_.site, config_.application, entity};
   }
+  // Our entities numbered under n applications (ReceiveFilter::application_blocks): PDUs of
+  // every one of them are ours (echo or clash).
+  void set_application_blocks(std::uint16_t n) noexcept {
+    ReceiveFilter f = parser_.filter();
+    f.application_blocks = n;
+    parser_.set_filter(f);
+  }
   const SessionConfig& config() const noexcept { return config_; }
   const Counters& counters() const noexcept { return counters_; }
   Counters& counters() noexcept { return counters_; }
