@@ -22,6 +22,6 @@ plot "bench/results/tick_scaling.csv" skip 1 using 1:5 with linespoints pt 7 lw 
      "" skip 1 using 1:7 with linespoints pt 6 lw 1 dt 2 title "net off, 1 thread", \
      "" skip 1 using 1:8 with linespoints pt 4 lw 1 dt 2 title "net off, 2 threads", \
      "bench/results/tick_scaling_before.csv" skip 1 using 1:($5 > 0 ? $5 : 1/0) with linespoints pt 2 lw 1 lc rgb "gray60" title "whole tick, 1 thread, before (c0e5295)", \
-     "bench/results/tick_scaling.csv" skip 1 using 1:13 with lines lw 1 dt 4 lc rgb "dark-green" title "whole tick, 1 thread: CPU ms (machine shared)", \
+     "bench/results/tick_scaling.csv" skip 1 using 1:13 with lines lw 1 dt 4 lc rgb "dark-green" title "whole tick, 1 thread: CPU ms", \
      old(x) with lines lw 2 dt 3 lc rgb "gray40" title "old main: 0.5 us per vehicle (net off)", \
      frame60(x) with lines lw 1 lc rgb "red" title "16.7 ms (60 Hz)"
