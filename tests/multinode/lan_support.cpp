@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <random>
@@ -127,6 +128,21 @@ std::string read_text(const std::filesystem::path& file) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+std::vector<std::string> node_args(const std::string& scenario, int port, int node, double start_at, double seconds,
+                                   const std::filesystem::path& dir, const std::string& tag) {
+  char s[64];
+  std::snprintf(s, sizeof s, "%.3f", start_at);
+  return {"run",      "--scenario", (std::filesystem::path(NPSNET_SOURCE_DIR) / "tests" / "multinode" / "data" / scenario).string(),
+          "--net",    "udp://239.1.2.3:" + std::to_string(port),
+          "--iface",  "127.0.0.1",
+          "--node",   std::to_string(node),
+          "--start-at", s,
+          "--no-render",
+          "--seconds", std::to_string(seconds),
+          "--events", (dir / ("events_" + tag + ".jsonl")).string(),
+          "--snapshots", (dir / ("snap_" + tag)).string()};
 }
 
 }  // namespace lan

@@ -20,6 +20,13 @@ std::filesystem::path npsnet_binary();
 // A fresh empty folder under the system temp folder.
 std::filesystem::path fresh_dir(const std::string& tag);
 
+// The arguments of one headless node of a loopback exercise: `run --scenario
+// tests/multinode/data/<scenario> --net udp://239.1.2.3:<port> --iface 127.0.0.1 --node <node>
+// --start-at <start_at> --no-render --seconds <seconds>`, its event log events_<tag>.jsonl and
+// its snapshots snap_<tag> in dir.
+std::vector<std::string> node_args(const std::string& scenario, int port, int node, double start_at, double seconds,
+                                   const std::filesystem::path& dir, const std::string& tag);
+
 class Procs {
  public:
   Procs() = default;

@@ -19,17 +19,7 @@ const std::filesystem::path kData = std::filesystem::path(NPSNET_SOURCE_DIR) / "
 constexpr double kHeartbeatS = 5.0;  // Annex C (the nodes run with the default DIS timeout, 12 s)
 
 std::vector<std::string> args(int port, int node, double start_at, const std::filesystem::path& dir) {
-  char s[64];
-  std::snprintf(s, sizeof s, "%.3f", start_at);
-  const std::string tag = std::to_string(node);
-  std::vector<std::string> a{"run",        "--scenario", (kData / "adoption.toml").string(),
-                             "--net",      "udp://239.1.2.3:" + std::to_string(port),
-                             "--iface",    "127.0.0.1",
-                             "--node",     tag,
-                             "--start-at", s,
-                             "--no-render", "--seconds", "24",
-                             "--events",   (dir / ("events_" + tag + ".jsonl")).string(),
-                             "--snapshots", (dir / ("snap_" + tag)).string()};
+  auto a = lan::node_args("adoption.toml", port, node, start_at, 24, dir, std::to_string(node));
   if (node == 1) a.insert(a.end(), {"--input", (kData / "adoption-1.jsonl").string()});
   return a;
 }

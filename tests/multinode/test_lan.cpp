@@ -19,21 +19,7 @@ namespace {
 using nlohmann::json;
 const std::filesystem::path kData = std::filesystem::path(NPSNET_SOURCE_DIR) / "tests" / "multinode" / "data";
 
-std::vector<std::string> node_args(const std::string& scenario, int port, int node, double start_at, double seconds,
-                                   const std::filesystem::path& dir, const std::string& tag) {
-  char s[64];
-  std::snprintf(s, sizeof s, "%.3f", start_at);
-  return {"run",      "--scenario", (kData / scenario).string(),
-          "--net",    "udp://239.1.2.3:" + std::to_string(port),
-          "--iface",  "127.0.0.1",
-          "--node",   std::to_string(node),
-          "--start-at", s,
-          "--no-render",
-          "--seconds", std::to_string(seconds),
-          "--events", (dir / ("events_" + tag + ".jsonl")).string(),
-          "--snapshots", (dir / ("snap_" + tag)).string()};
-}
-
+using lan::node_args;
 using lan::of_type;
 
 std::set<std::string> pair_of(const json& c) { return {c.value("a", ""), c.value("b", "")}; }

@@ -10,6 +10,7 @@
 #include "node/dr_bound.hpp"
 #include "node/net_bridge.hpp"
 #include "node/simulation.hpp"
+#include "support/fixture.hpp"
 #include "support/scratch.hpp"
 
 using namespace npsnet;
@@ -17,13 +18,7 @@ using namespace npsnet;
 namespace {
 
 const world::Scenario& crowd_scenario() {
-  static const world::Scenario sc = [] {
-    world::Scenario s = world::load_scenario(std::string(NPSNET_SOURCE_DIR) + "/scenarios/default.toml");
-    s.background_vehicles = 2000;
-    s.background_seed = 7;
-    s.background_area = std::make_pair(Vec2(20000, 30000), Vec2(23000, 33000));
-    return s;
-  }();
+  static const world::Scenario sc = test::default_with_crowd(2000, 7, Vec2(20000, 30000), Vec2(23000, 33000));
   return sc;
 }
 

@@ -10,6 +10,7 @@
 
 #include "core/jobs.hpp"
 #include "node/simulation.hpp"
+#include "support/fixture.hpp"
 #include "support/scratch.hpp"
 
 using namespace npsnet;
@@ -24,13 +25,7 @@ struct Outcome {
 };
 
 const world::Scenario& crowd_scenario() {
-  static const world::Scenario sc = [] {
-    world::Scenario s = world::load_scenario(std::string(NPSNET_SOURCE_DIR) + "/scenarios/default.toml");
-    s.background_vehicles = 6000;
-    s.background_seed = 13;
-    s.background_area = std::make_pair(Vec2(20000, 30000), Vec2(24000, 34000));
-    return s;
-  }();
+  static const world::Scenario sc = test::default_with_crowd(6000, 13, Vec2(20000, 30000), Vec2(24000, 34000));
   return sc;
 }
 

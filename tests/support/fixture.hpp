@@ -16,6 +16,16 @@ namespace npsnet::test {
 inline std::filesystem::path source(const std::string& rel) { return std::filesystem::path(NPSNET_SOURCE_DIR) / rel; }
 
 // A 2 km square at 10 m posts; height = base + slope_x * x.
+// The default scenario with a background crowd of `vehicles` (seed `seed`) placed and driving in
+// the square [lo, hi] of the local frame: the crowd of the threading and net-out tests.
+inline world::Scenario default_with_crowd(int vehicles, uint64_t seed, const Vec2& lo, const Vec2& hi) {
+  world::Scenario s = world::load_scenario(source("scenarios/default.toml"));
+  s.background_vehicles = vehicles;
+  s.background_seed = seed;
+  s.background_area = std::make_pair(lo, hi);
+  return s;
+}
+
 inline world::World flat_world(double base = 100.0, double slope_x = 0.0) {
   world::World w;
   const int n = 201;
