@@ -70,7 +70,7 @@ void mirror(World& w, const Mirror& m) {
 }  // namespace
 
 void apply(World& w, const Changes& c, Applied& out) {
-  assert(w.valid());
+  assert(w.valid_state());
   auto& ents = w.ents;
   for (const auto& m : c.mirrors) mirror(w, m);
   for (const auto& ch : c.entities) {
@@ -126,7 +126,7 @@ void apply(World& w, const Changes& c, Applied& out) {
     });
   }
   for (const auto& l : c.launches) out.launched.push_back(launch(w, l));
-  assert(w.valid());
+  assert(w.valid_state());
 }
 
 }  // namespace npsnet::world

@@ -1,6 +1,7 @@
 #include "world/world.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 namespace npsnet::world {
@@ -72,6 +73,10 @@ bool Entities::valid() const {
 }
 
 bool World::valid() const {
+  return valid_state() && ((grid.cols() == 0 && fixed.size() == 0) || grid.valid(fixed.pos, fixed.reach_m));
+}
+
+bool World::valid_state() const {
   if (!ents.valid() || !fixed.valid()) return false;
   const int ne = static_cast<int>(ents.size());
   auto kind_ok = [&](int k, int state) { return k >= 0 && k < kinds.size() && state < static_cast<int>(kinds[k].states.size()); };
@@ -81,7 +86,7 @@ bool World::valid() const {
       return false;
   for (size_t o = 0; o < fixed.size(); ++o)
     if (!kind_ok(fixed.kind[o], fixed.state[o])) return false;
-  return (grid.cols() == 0 && fixed.size() == 0) || grid.valid(fixed.pos, fixed.reach_m);
+  return true;
 }
 
 void World::index_fixed() {
@@ -93,6 +98,7 @@ void World::index_fixed() {
     fixed.reach_m[o] = std::hypot(c0.x(), c0.y()) + r + 0.01f;
   }
   grid.build(fixed.pos, fixed.reach_m, terrain.width_m(), terrain.depth_m(), thesis::kGridsquareM);
+  assert(valid());
 }
 
 }  // namespace npsnet::world

@@ -83,8 +83,11 @@ struct World {
 
   // Invariants (asserted in debug builds, as Box2D validates its broad phase): array sizes
   // match, kind, state, owner and target indices in range, the grid lists every object where
-  // its reach says.
+  // its reach says. valid_state() is the same without the grid, O(entities + objects): what
+  // world::apply asserts, since apply never rebuilds the grid nor moves an object across the
+  // plane (a crater only settles it in z); index_fixed() asserts the whole of valid().
   bool valid() const;
+  bool valid_state() const;
   // Computes every fixed object's reach (its kind's models, every state, with the margin the
   // collision tiers use) and builds the grid; call after adding fixed objects.
   void index_fixed();
