@@ -112,6 +112,11 @@ const Snapshots::State* Snapshots::past_state(double t) {
   return &at(filled_ - 1);
 }
 
+int Snapshots::frames_left(double t) const {
+  const auto recent = std::count_if(taken_.begin(), taken_.end(), [&](double u) { return u > t - 60.0 + 1e-9; });
+  return std::min(opt_.max_frames - taken_total_, opt_.max_per_minute - static_cast<int>(recent));
+}
+
 bool Snapshots::budget(const world::World& w, int n, const std::vector<std::string>& files) {
   const double t = w.t;
   taken_.erase(std::remove_if(taken_.begin(), taken_.end(), [&](double u) { return u <= t - 60.0 + 1e-9; }), taken_.end());
@@ -291,6 +296,7 @@ int Snapshots::periodic_camera(const world::World& w, render::Camera& cam, bool&
 }
 
 void Snapshots::cameras_due(const world::World& w, std::vector<render::Camera>& out) const {
+  if (frames_left(w.t) <= 0) return;  // after_tick skips every frame: nothing is seen
   for (const Pending& p : pending_)
     if (p.due_t <= w.t + 1e-9) out.push_back(result_camera(w, p));
   if (!start_view_) {

@@ -68,7 +68,8 @@ class Snapshots {
   // frames, the start view and the window's HUD follow it.
   void set_driven(int e) { driven_ = e; }
   // The cameras of the frames after_tick will render at the end of this tick (due result frames,
-  // the start view, a due periodic frame; frames the budget then skips included), from the world
+  // the start view, a due periodic frame; none once the snapshot budget has no frame left at
+  // this time, since after_tick would skip them all; when some frames are left, all due), from the world
   // `w` as it stands before collision detection: the views whose pairs the collision detector
   // decides at the exact tier (run.cpp, Simulation::before_detect).
   void cameras_due(const world::World& w, std::vector<render::Camera>& out) const;
@@ -107,6 +108,8 @@ class Snapshots {
   bool start_view_ = false;
   // The buffered state of scenario time `t` (interpolated), or the oldest one; null when none.
   const State* past_state(double t);
+  // Frames the budget still allows at scenario time t (the per-run and the per-minute limit).
+  int frames_left(double t) const;
   // Takes `n` frames from the budget at scenario time t, or logs `files` as skipped.
   bool budget(const world::World& w, int n, const std::vector<std::string>& files);
 

@@ -1,7 +1,8 @@
 // The views a node renders decide tiers (issue 13): through the real run path, with a collision
 // budget of 0, a pair of background tanks colliding in the frame the node renders (the periodic
 // snapshot from the driver's station of its vehicle) is decided by the exact tier, the same
-// collision out of view by the sphere tier; without rendering, both by the sphere tier.
+// collision out of view by the sphere tier; with the snapshot budget spent or without rendering,
+// both by the sphere tier.
 #ifdef NPSNET_HAVE_RENDER
 #include <gtest/gtest.h>
 
@@ -55,11 +56,17 @@ std::map<std::string, std::string> tiers(const std::string& name, const std::str
 
 }  // namespace
 
-TEST(ViewTiers, APairInTheRenderedViewGetsTheExactTierOneOutsideItTheSphere) {
+TEST(ViewTiers, APairInTheRenderedViewGetsTheExactTierOneOutsideOrSkippedTheSphere) {
   auto t = tiers("view-tiers-rendered", "--snapshot-every 0.1");
   ASSERT_EQ(t.size(), 2u);
   EXPECT_EQ(t["seen"], "mesh") << "in the driver's frame rendered every tick";
   EXPECT_EQ(t["unseen"], "sphere") << "out of view, budget 0: the thesis spheres";
+  // The same frames, but the snapshot budget is spent by the first (t = 0): the later frames are
+  // skipped, never seen, so they do not make their pairs exact.
+  t = tiers("view-tiers-spent", "--snapshot-every 0.1 --max-snapshots 1");
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(t["seen"], "sphere") << "the frame is skipped by the snapshot budget: no view";
+  EXPECT_EQ(t["unseen"], "sphere");
   t = tiers("view-tiers-headless", "--no-render");
   ASSERT_EQ(t.size(), 2u);
   EXPECT_EQ(t["seen"], "sphere") << "nothing rendered: no view";
