@@ -11,6 +11,8 @@
 #   8 s - 18 s  node 2 cut off (a 10 s partition, then it heals)
 #   12 s        node 3 killed with SIGKILL; 16 s: started again (same site, application, scenario)
 #   30 s        node 4 starts (a late joiner)
+# The restarted node and the late joiner are given the exercise's real start (--start-at T0): they
+# join at its current time (run.cpp: their own scenario caught up headless, nothing replayed).
 #   36 s        the faults stop (every link clean)
 #   41 s        every node writes its world (--state-out, --state-at: one heartbeat after the faults)
 #   42 s        every node ends
@@ -99,9 +101,9 @@ node 1 n1 "$T0"; node 2 n2 "$T0"; node 3 n3 "$T0"
 if [ "$CONTROL" = 0 ]; then
   at 8;  echo "faults: t=8 node 2 cut off" >&2; sig_link 2 USR1
   at 12; echo "faults: t=12 node 3 killed (SIGKILL)" >&2; kill -KILL "${PIDS[2]}"; wait "${PIDS[2]}" 2>/dev/null || true
-  at 16; echo "faults: t=16 node 3 started again" >&2; node 3 n3b "$(( T0 + 16 ))"
+  at 16; echo "faults: t=16 node 3 started again (joins at the exercise time)" >&2; node 3 n3b "$T0"
   at 18; echo "faults: t=18 node 2 back (partition healed)" >&2; sig_link 2 USR2
-  at 30; echo "faults: t=30 node 4 joins late" >&2; node 4 n4 "$(( T0 + 30 ))"
+  at 30; echo "faults: t=30 node 4 joins late" >&2; node 4 n4 "$T0"
   at 36; echo "faults: t=36 faults stop: every link clean" >&2; for k in 1 2 3 4; do sig_link "$k" HUP; done
 fi
 rc=0

@@ -94,8 +94,12 @@ DatagramParser::Step DatagramParser::step(std::span<const std::uint8_t> rest, Co
     return s;
   }
   if (filter_.ignore_own && origin.site == filter_.site && filter_.own_application(origin.application)) {
-    ++(filter_.echo ? c.own_echo_ignored : c.own_id_clash);
-    return s;
+    // A Detonation of one of our rounds that we did not send is another node repeating it (a
+    // node that adopted the rounds of our earlier process, killed and restarted): delivered.
+    if (filter_.echo || s.type != PduType::Detonation) {
+      ++(filter_.echo ? c.own_echo_ignored : c.own_id_clash);
+      return s;
+    }
   }
   ++c.decoded[h.pdu_type];
   s.deliver = true;

@@ -46,6 +46,7 @@ EventLog::~EventLog() {
 }
 
 void EventLog::write(const nlohmann::json& event) {
+  if (muted_) return;
   counts_[event.value("event", "?")] += 1;
   if (keep_) kept_.push_back(event);
   if (fd_ < 0) return;

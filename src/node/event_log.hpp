@@ -43,6 +43,9 @@ class EventLog {
   // Every event written, kept in memory when `keep` (tests read them back).
   void keep(bool k) { keep_ = k; }
   const std::vector<nlohmann::json>& kept() const { return kept_; }
+  // While muted, write() drops events (not counted, not kept): a node catching up to a running
+  // exercise replays its past ticks without logging them as live (run.cpp).
+  void mute(bool m) { muted_ = m; }
 
  private:
   int fd_ = -1;
@@ -51,6 +54,7 @@ class EventLog {
   long long size_ = 0;  // bytes of whole lines in the file
   std::map<std::string, int> counts_;
   bool keep_ = false;
+  bool muted_ = false;
   std::vector<nlohmann::json> kept_;
 };
 

@@ -114,9 +114,22 @@ void NetBridge::attach() {
   sim_.before_step = [this](world::World& w) { before_step(w); };
   sim_.decides = [this](const collision::Contact& c) { return decides(c); };
   sim_.on_tick = [this](const TickReport& r) {
-    if (chained_on_tick_) chained_on_tick_(r);
+    if (chained_on_tick_ && !catching_up_) chained_on_tick_(r);
     after_tick(r);
   };
+}
+
+void NetBridge::catch_up(bool on) {
+  if (catching_up_ && !on) {  // going live: announce everything at the next tick
+    pubs_.assign(own_.size(), net::DrPublisher(net::DrAlgorithm::RVW, dr_thresholds(opt_.timeout_s)));
+    anchors_.assign(own_.size(), DrAnchor{});
+    accel_.assign(own_.size(), Vec3::Zero());
+    const auto& ents = sim_.world().ents;
+    for (size_t i = 0; i < own_.size(); ++i) prev_vel_[i] = ents.vel[own_[i]], prev_heading_[i] = ents.heading_deg[own_[i]];
+    const double hb = remotes_.thresholds().heartbeat_s;
+    for (double& s : fixed_last_sent_) s = clock_s() - hb;
+  }
+  catching_up_ = on;
 }
 
 void NetBridge::check_signal() {
@@ -217,6 +230,7 @@ void NetBridge::report_clash() {
 
 void NetBridge::before_step(world::World& w) {
   now_s_ = clock_s();
+  if (catching_up_) return;  // the past: no network
   if (!started_) started_ = true, start_s_ = now_s_;  // rates count from the first tick
   ownership_.clear();
   check_signal();
@@ -476,8 +490,9 @@ void NetBridge::publish_fixed(const TickReport& r) {
     fixed_net_state_[d.index] = static_cast<int16_t>(d.to_state);
     if (fixed_slot_[d.index] < 0) start_publishing(d.index);
     else fixed_last_sent_[fixed_slot_[d.index]] = now_s_;
-    send_cultural(d.index);
+    if (!catching_up_) send_cultural(d.index);
   }
+  if (catching_up_) return;
   const double hb = remotes_.thresholds().heartbeat_s;
   for (size_t i = 0; i < fixed_published_.size(); ++i)
     if (now_s_ - fixed_last_sent_[i] >= hb) {
@@ -523,6 +538,10 @@ void NetBridge::publish_detonations(const TickReport& r) {
 
 void NetBridge::after_tick(const TickReport& r) {
   now_s_ = clock_s();
+  if (catching_up_) {  // the past: our fires are held, remote entities absent; objects noted
+    publish_fixed(r);
+    return;
+  }
   publish_fires(r);
   publish_vehicles();  // Entity States first: a Collision PDU's outcome reads the issuer's appearance
   publish_collisions(r);

@@ -118,6 +118,13 @@ class NetBridge {
   void attach();
   // Sends a deactivation Entity State for every local vehicle (end of a run).
   void leave();
+  // Joining a running exercise (run.cpp): while catching up, the node replays its past ticks
+  // headless: the bridge neither receives nor sends, the chained on_tick (snapshots) is not
+  // called, and the fixed objects this node's vehicles changed are only noted (published from
+  // the join on, with their heartbeat). catch_up(false) goes live: every local vehicle's Entity
+  // State and every noted object go out at the next tick (a new entity announced at once).
+  void catch_up(bool on);
+  bool catching_up() const { return catching_up_; }
 
   // The receive path: one datagram's bytes, arrived at arrival_s (bridge clock, s). Any bytes.
   void receive(std::span<const std::uint8_t> datagram, double arrival_s);
@@ -205,6 +212,7 @@ class NetBridge {
   std::uint16_t cultural_app_;
   double start_s_ = 0, now_s_ = 0;
   bool started_ = false;
+  bool catching_up_ = false;
 
   // Local vehicles we publish (world indices), one DrPublisher each.
   std::vector<int> own_;

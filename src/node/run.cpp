@@ -37,6 +37,11 @@ void print_problems(const world::InputError& e) {
 double wall_now() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
+// The whole ticks of dt since the exercise started at start_at (UNIX s): where a late node joins.
+long join_ticks(double start_at, double dt) {
+  const double n = std::floor((wall_now() - start_at) / dt + 1e-9);
+  return n < 1e15 ? static_cast<long>(n) : 1000000000000000L;  // --start-at -1e300: past any run's end
+}
 }  // namespace
 
 int run_command(const RunOptions& opt) {
@@ -147,6 +152,15 @@ int run_command(const RunOptions& opt) {
   const long ticks = o.frames ? *o.frames
                               : static_cast<long>(std::ceil((o.seconds ? *o.seconds : sc.duration_s) / o.dt - 1e-9));
   if (o.events.empty()) o.events = o.snapshots / "events.jsonl";
+  const bool paced = o.realtime || o.window || net_on;  // --net: scenario time = wall time
+  // Joining a running exercise: a paced run (not --replay) whose --start-at has passed starts
+  // its clock at now - start (whole ticks; the ticks before are caught up headless, see below).
+  const bool joining = o.start_at && paced && !replay_on && wall_now() - *o.start_at >= o.dt;
+  if (joining && join_ticks(*o.start_at, o.dt) >= ticks) {
+    std::fprintf(stderr, "--start-at %.15g: the exercise started %.6g s ago, past this run's end (%.6g s of scenario "
+                 "time): nothing left to join\n", *o.start_at, wall_now() - *o.start_at, ticks * o.dt);
+    return 2;
+  }
   const bool has_player = o.window || !o.drive.empty() || !o.input.empty() || !o.record_input.empty();
   if (!o.input.empty() && !o.record_input.empty() &&
       std::filesystem::weakly_canonical(o.record_input) == std::filesystem::weakly_canonical(o.input)) {
@@ -253,11 +267,56 @@ int run_command(const RunOptions& opt) {
   }
 #endif
   // --- network end ---
-  const bool paced = o.realtime || o.window || net_on;  // --net: scenario time = wall time
   if (o.start_at && !replay_on)  // with --replay, --start-at is the recording's t = 0: no wait
     while (wall_now() < *o.start_at) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  bool state_written = o.state_out.empty();  // --state-out: written once, at --state-at or the end
+  const auto write_state_due = [&] {
+    if (!state_written && o.state_at && sim.world().t >= *o.state_at - 1e-9) {
+      write_state(o.state_out, sim.world(), sim.craters());
+      state_written = true;
+    }
+  };
+  // Joining late (--start-at passed): the node replays its own scenario from t = 0 to now - start
+  // headless and at full speed: no network (remote entities absent), no event log, no snapshots,
+  // no fire (its earlier rounds are not fired again: the network brings their craters); its
+  // vehicles follow their routes, and what they do to each other and to fixed objects happens as
+  // it did. Then it goes live (every local Entity State at once) at the exercise's current time.
+  const long first = joining ? std::min(join_ticks(*o.start_at, o.dt), ticks) : 0;
+  if (first > 0) {
+    const auto before_apply = std::move(sim.before_apply);
+    const auto before_detect = std::move(sim.before_detect);
+    sim.before_apply = nullptr, sim.before_detect = nullptr;
+    log.mute(true);
+    sim.hold_fire(true);
+#ifdef NPSNET_HAVE_NET
+    if (bridge) bridge->catch_up(true);
+#endif
+    try {
+      for (long i = 0; i < first; ++i) {
+        sim.tick();
+        write_state_due();
+      }
+    } catch (const OutputError& e) {
+      std::fprintf(stderr, "npsnet: t = %.1f s: %s; run stopped\n", sim.world().t, e.what());
+      return 1;
+    }
+#ifdef NPSNET_HAVE_NET
+    if (bridge) bridge->catch_up(false);
+#endif
+    sim.hold_fire(false);
+    log.mute(false);
+    sim.before_apply = before_apply, sim.before_detect = before_detect;
+    log.write({{"event", "exercise_joined"}, {"t", std::round(sim.world().t * 1000) / 1000}, {"frame", sim.world().frame},
+               {"start_at", *o.start_at}, {"caught_up_ticks", first}});
+    if (!o.quiet)
+      std::fprintf(stderr, "npsnet: joined the exercise at t = %.2f s (%ld ticks caught up headless)\n", sim.world().t, first);
+  }
+  // The scenario clock: tick i ends at t0 + (i + 1) dt (joining: t0 is the exercise's start).
   auto t0 = std::chrono::steady_clock::now();
+  if (first > 0)
+    t0 -= std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(wall_now() - *o.start_at));
   long next_progress = ticks / 10;
+  while (ticks >= 10 && next_progress <= first) next_progress += ticks / 10;
   // The run goes on past its length (at most kResultDelayS more) until every result frame is written.
   const long extra = static_cast<long>(std::ceil(2.0 / o.dt)) + 1;
   long done = 0;
@@ -273,9 +332,8 @@ int run_command(const RunOptions& opt) {
   const auto go_on = [&](long i) {
     return ended_by ? more() && i < end_by : i < ticks || (more() && i < ticks + extra);
   };
-  bool state_written = o.state_out.empty();  // --state-out: written once, at --state-at or the end
   try {
-    for (long i = 0; go_on(i); ++i, ++done) {
+    for (long i = first; go_on(i); ++i, ++done) {
 #ifdef NPSNET_HAVE_NET
       if (bridge && bridge->frozen()) {  // Stop/Freeze: the scenario clock stands still
         const auto f0 = std::chrono::steady_clock::now();
@@ -293,10 +351,7 @@ int run_command(const RunOptions& opt) {
 #else
       sim.tick();
 #endif
-      if (!state_written && o.state_at && sim.world().t >= *o.state_at - 1e-9) {
-        write_state(o.state_out, sim.world(), sim.craters());
-        state_written = true;
-      }
+      write_state_due();
       if (player && player->quit()) end_now("quit", i);  // Esc, or a quit action
       if (paced && !ended_by) std::this_thread::sleep_until(deadline);
       if (!o.quiet && i + 1 >= next_progress && ticks >= 10) {

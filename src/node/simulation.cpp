@@ -53,6 +53,7 @@ void Simulation::apply_now(const world::Changes& c) {
 }
 
 int Simulation::fire(int shooter, int munition_kind, const Vec3 point, int target_entity, const std::string target_name) {
+  if (fire_held_) return -1;
   auto launch = dynamics::fire(w_, shooter, munition_kind, point, target_entity);
   if (!launch) return -1;
   // Reclaim the slot of a round spent at least two ticks ago (no contact episode, PDU or

@@ -99,6 +99,11 @@ class Simulation {
   // Fires `munition_kind` from `shooter` at an entity or a point, logging the fire event.
   // point and target_name by value: callers pass references into the entity arrays, which grow.
   int fire(int shooter, int munition_kind, Vec3 point, int target_entity, std::string target_name);
+  // While fire is held, fire() launches nothing and returns -1 (scheduled fires, the player's,
+  // autonomous return fire): a node catching up to a running exercise (run.cpp) does not fire
+  // again the rounds of its earlier process, nor those a late joiner would have fired before it
+  // joined; their craters arrive from the network (node/detonation_ledger.hpp).
+  void hold_fire(bool held) { fire_held_ = held; }
   int find_entity(const std::string& id) const;
 
  private:
@@ -127,6 +132,7 @@ class Simulation {
   std::vector<dynamics::GroundImpact> impacts_;
   std::vector<dynamics::Crash> crashes_;
   int driven_ = -1;
+  bool fire_held_ = false;
   std::vector<int> fired_;
   world::Changes changes_, injected_, now_;
   world::Applied now_applied_;

@@ -1,7 +1,7 @@
 // Faults (issue 11): scripts/faults.sh runs four nodes in network namespaces on a bridge, every
 // link impaired in user space (loss 20 %, duplicates 5 %, reordering 25 %, 20 +- 10 ms), with a
 // 10 s partition that heals, a node killed with SIGKILL and started again, and a late joiner 30 s
-// in; 5 s after the faults stop every node writes its world. The script exits 0 only when all
+// in, both given the exercise's start time (they join at its current time); 5 s after the faults stop every node writes its world. The script exits 0 only when all
 // four worlds agree (vehicles and damage states, changed objects, craters). A control run of the
 // same exercise without faults is the reference for what does not depend on timing: the craters
 // and the changed objects must be the control's. Skips where namespaces are not available (77).
@@ -57,6 +57,16 @@ TEST(Faults, FourNodesAgreeAfterLossPartitionKillAndLateJoin) {
   }
   // The late joiner and the restarted node learned what happened before them from repeats.
   EXPECT_NE(lan::read_text(faulty / "out_n4.txt").find("repeats received and ignored"), std::string::npos);
+  // Both joined at the exercise's time (--start-at T0): nothing of the past replayed as new.
+  for (const char* tag : {"n3b", "n4"}) {
+    SCOPED_TRACE(tag);
+    const auto ev = lan::read_events(faulty / ("events_" + std::string(tag) + ".jsonl"));
+    ASSERT_FALSE(ev.empty());
+    EXPECT_EQ(ev.front()["event"], "exercise_joined");
+    EXPECT_GE(ev.front()["t"].get<double>(), std::string(tag) == "n4" ? 29.0 : 15.0);
+    for (const auto& f : lan::of_type(ev, "fire"))  // only other nodes' rounds (none after 14 s)
+      EXPECT_TRUE(f.value("remote", false)) << f.dump() << ": s3's rounds of t = 2 s and 10 s are not fired again";
+  }
   std::filesystem::remove_all(control);
   std::filesystem::remove_all(faulty);
 }

@@ -15,7 +15,10 @@
 //  * Filter: PDUs of another exercise are ignored (counted); PDUs whose originating entity
 //    (ES/ESU entity, Fire/Detonation firing entity, Collision issuing entity, simulation
 //    management originating id) has our site and
-//    application are our own echo and are ignored (counted).
+//    application are our own echo and are ignored (counted); not our echo (a datagram we did not
+//    send): another simulator using our identity (counted as own_id_clash, ignored), except a
+//    Detonation: another node repeating one of our rounds (node/detonation_ledger.hpp adoption,
+//    after our process was restarted), delivered.
 #pragma once
 
 #include <cstddef>

@@ -1,0 +1,117 @@
+// Joining a running exercise (issue 11; run.cpp): a node given the exercise's start time in the
+// past (--start-at T0, the original one) starts its clock at now - T0. It catches up its own
+// scenario headless (no network, no event log, no fire) and goes live at the exercise's time;
+// the craters and object states of the past come from the network (detonation ledger repeats and
+// adoption, cultural-feature heartbeats).
+// Four nodes of tests/multinode/data/faults.toml on loopback multicast (--iface 127.0.0.1, a
+// random port): nodes 1-3 from T0; node 3 (whose parked tank s3 fires at t = 2 s and 10 s) is
+// SIGKILLed at 12 s and started again at 14 s with --start-at T0; node 4 joins at 16 s with
+// --start-at T0 (the late joiner). Every node runs to T0 + 30 s and writes its world at t = 29 s.
+// Before this change the restarted node replayed its scenario from t = 0 (s3 fired both rounds
+// again) and dropped the adopted repeats of its own rounds as an identity clash.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <set>
+#include <thread>
+
+#include "lan_support.hpp"
+
+namespace {
+using nlohmann::json;
+using lan::of_type;
+constexpr double kRunS = 30, kStateAtS = 29;
+
+std::vector<std::string> args(int port, int node, double start_at, const std::filesystem::path& dir,
+                              const std::string& tag) {
+  auto a = lan::node_args("faults.toml", port, node, start_at, kRunS, dir, tag);
+  a.insert(a.end(), {"--state-out", (dir / ("state_" + tag + ".json")).string(), "--state-at", "29"});
+  return a;
+}
+json state(const std::filesystem::path& dir, const std::string& tag) {
+  std::ifstream in(dir / ("state_" + tag + ".json"));
+  return in ? json::parse(in, nullptr, false) : json();
+}
+void sleep_until_unix(double t) {  // bounded: at most 60 s
+  for (int i = 0; i < 6000 && lan::unix_now() < t; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+}
+std::set<std::pair<std::string, std::string>> vehicles(const json& s) {
+  std::set<std::pair<std::string, std::string>> v;
+  for (const auto& e : s["entities"]) v.insert({e["id"].get<std::string>(), e["state"].get<std::string>()});
+  return v;
+}
+// A joiner's log starts with exercise_joined at about `at` (s), and nothing in it is earlier.
+void expect_joined_at(const std::vector<json>& ev, double at) {
+  ASSERT_FALSE(ev.empty());
+  EXPECT_EQ(ev.front()["event"], "exercise_joined") << ev.front().dump();
+  const double t = ev.front()["t"].get<double>();
+  EXPECT_GE(t, at - 0.5);
+  EXPECT_LE(t, at + 1.5);
+  for (const auto& e : ev) EXPECT_GE(e["t"].get<double>(), t) << e.dump();
+}
+}  // namespace
+
+TEST(Join, RestartedNodeAndLateJoinerJoinAtTheExerciseTimeAndLearnThePast) {
+  const auto dir = lan::fresh_dir("join");
+  const int port = lan::random_port();
+  const double t0 = lan::unix_now() + 2.0;
+  lan::Procs procs;
+  std::vector<int> pids;
+  for (int n = 1; n <= 3; ++n)
+    pids.push_back(procs.start(args(port, n, t0, dir, std::to_string(n)), dir / ("out_" + std::to_string(n) + ".txt")));
+  sleep_until_unix(t0 + 12);
+  procs.kill_now(pids[2]);
+  sleep_until_unix(t0 + 14);
+  pids[2] = procs.start(args(port, 3, t0, dir, "3b"), dir / "out_3b.txt");
+  sleep_until_unix(t0 + 16);
+  pids.push_back(procs.start(args(port, 4, t0, dir, "4"), dir / "out_4.txt"));
+  for (int k = 0; k < 4; ++k) {
+    const std::string tag = k == 2 ? "3b" : std::to_string(k + 1);
+    ASSERT_EQ(procs.wait(pids[k], 60.0), 0) << lan::read_text(dir / ("out_" + tag + ".txt"));
+  }
+
+  ASSERT_EQ(of_type(lan::read_events(dir / "events_3.jsonl"), "fire").size(), 2u) << "s3 fired twice before the kill";
+  const auto ev3 = lan::read_events(dir / "events_3b.jsonl"), ev4 = lan::read_events(dir / "events_4.jsonl");
+  {
+    SCOPED_TRACE("restarted node 3");
+    expect_joined_at(ev3, 14);
+    for (const auto& f : of_type(ev3, "fire"))  // g1's round (node 1, t = 14 s) may arrive as a remote fire
+      EXPECT_TRUE(f.value("remote", false)) << f.dump() << ": its rounds of t = 2 s and 10 s are not fired again";
+    EXPECT_TRUE(of_type(ev3, "id_clash").empty()) << "an adopted repeat of its own round is no identity clash";
+  }
+  {
+    SCOPED_TRACE("late joiner node 4");
+    expect_joined_at(ev4, 16);
+  }
+  // Every node holds the same world at t = 29 s: three craters (two of s3's rounds, learned by the
+  // joiners from adopted repeats, one of g1's), tree2 run down, the same vehicles and damage.
+  const json ref = state(dir, "1");
+  ASSERT_TRUE(ref.is_object());
+  EXPECT_EQ(ref["craters"].size(), 3u);
+  EXPECT_FALSE(ref["fixed"].empty());
+  for (const std::string tag : {"2", "3b", "4"}) {
+    SCOPED_TRACE("node " + tag);
+    const json s = state(dir, tag);
+    ASSERT_TRUE(s.is_object());
+    EXPECT_EQ(s["craters"], ref["craters"]);
+    EXPECT_EQ(s["fixed"], ref["fixed"]);
+    EXPECT_EQ(vehicles(s), vehicles(ref));
+    const auto craters = of_type(lan::read_events(dir / ("events_" + tag + ".jsonl")), "crater");
+    EXPECT_EQ(craters.size(), 3u) << "each crater dug once";
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// An exercise that started before this run's whole length: bad input, exit 2, nothing written.
+TEST(Join, StartAtPastTheRunsEndIsBadInput) {
+  const auto dir = lan::fresh_dir("join_bad");
+  lan::Procs procs;
+  const auto a = lan::node_args("faults.toml", lan::random_port(), 1, lan::unix_now() - 100, 5, dir, "1");
+  const int pid = procs.start(a, dir / "out.txt");
+  EXPECT_EQ(procs.wait(pid, 30.0), 2);
+  const std::string out = lan::read_text(dir / "out.txt");
+  EXPECT_NE(out.find("--start-at"), std::string::npos) << out;
+  EXPECT_NE(out.find("nothing left to join"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "events_1.jsonl"));
+  std::filesystem::remove_all(dir);
+}
