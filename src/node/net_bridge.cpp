@@ -13,28 +13,7 @@ namespace npsnet::node {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
-// Entity State datagrams one tick sends at most (one PDU each); the rest go on the next ticks.
-// A receiver drains its socket once a tick: 128 datagrams fit its default receive buffer
-// (Linux rmem_default 208 KiB), where the 517 first Entity States of the default scenario did not.
-constexpr size_t kMaxDatagramsPerTick = 128;
-// Received values past these are corrupt or hostile: a speed (m/s) and the offset of a contact
-// point from its entity (m).
-constexpr double kMaxSpeedMps = 1e4;
-constexpr double kMaxContactOffsetM = 1000.0;
-// Published acceleration (ours, not the standard's): low-pass time constant (s), and the speed
-// (m/s) below which a vehicle is at rest and sends none.
-constexpr double kAccelTauS = 0.5;
-constexpr double kAtRestMps = 0.05;
-
 double round3(double v) { return std::round(v * 1000.0) / 1000.0; }
-Vec3 vv(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-double wrap180(double d) {
-  d = std::fmod(d + 180.0, 360.0);
-  if (d < 0) d += 360.0;
-  return d - 180.0;
-}
 
 }  // namespace
 
@@ -50,6 +29,7 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
       cultural_app_(static_cast<std::uint16_t>(kCulturalAppBit | o.app)) {
   if (!session_) throw std::runtime_error("--net: no session");
   detonations_.set_identity(static_cast<std::uint16_t>(o.site), static_cast<std::uint16_t>(o.app));
+  collisions_.set_identity(static_cast<std::uint16_t>(o.site), static_cast<std::uint16_t>(o.app));
   drop_detonations_s_ = test_drop_detonations_from_env();
   munitions_ = o.munitions ? o.munitions : std::make_shared<const MunitionTable>(MunitionTable::load(MunitionTable::default_file()));
   world::World& w = sim_.world();
@@ -151,6 +131,10 @@ std::string NetBridge::summary() const {
          " past the cap); repeats received and ignored " + std::to_string(detonations_.repeats_ignored()) +
          "; adopted " + std::to_string(detonations_.adoptions()) + " of silent nodes (sent " +
          std::to_string(detonations_.adopted_sent()) + " times)";
+  if (collisions_.kept() || collisions_.repeats_ignored())
+    r += "\n  net: collisions kept " + std::to_string(collisions_.kept()) + " (repeated " +
+         std::to_string(collisions_.repeats_sent()) + " times); repeats received and ignored " +
+         std::to_string(collisions_.repeats_ignored()) + "; adopted " + std::to_string(collisions_.adoptions());
   if (dropped_detonations_)
     r += "\n  net: test hook NPSNET_TEST_DROP_DETONATIONS_S dropped " + std::to_string(dropped_detonations_) +
          " received Detonation PDUs";
@@ -194,8 +178,10 @@ void NetBridge::receive(std::span<const std::uint8_t> datagram, double arrival_s
                                 [&](const net::StartResumePdu& p) { on_start_resume(p); },
                                 [&](const net::RemoveEntityPdu& p) { on_remove_entity(p); },
                                 [&](const net::EntityStatePdu& p) {
-                                  detonations_.heard(p.entity_id.site, p.entity_id.application & ~kCulturalAppBit,
-                                                     arrival_s);  // a live node (adoption rank)
+                                  // A live node (adoption rank).
+                                  const std::uint16_t app = p.entity_id.application & ~kCulturalAppBit;
+                                  detonations_.heard(p.entity_id.site, app, arrival_s);
+                                  collisions_.heard(p.entity_id.site, app, arrival_s);
                                   if (!process) return;
                                   if (p.entity_type.kind == dis::kEntityKindCultural &&
                                       (p.entity_id.application & kCulturalAppBit))
@@ -212,7 +198,10 @@ void NetBridge::receive(std::span<const std::uint8_t> datagram, double arrival_s
                                   // our own datagram, not someone else repeating it.
                                   if (!session_->sent_by_us(datagram)) on_detonation(p, arrival_s);
                                 },
-                                [&](const net::CollisionPdu& p) { on_collision(p); }});
+                                [&](const net::CollisionPdu& p) {
+                                  // An adopted collision we repeat comes back with the issuer's id.
+                                  if (!session_->sent_by_us(datagram)) on_collision(p, arrival_s);
+                                }});
   if (!clash_reported_ && session_->counters().own_id_clash > 0) report_clash();
 }
 
@@ -262,209 +251,11 @@ void NetBridge::on_cultural(const net::EntityStatePdu& p) {
   }
 }
 
-void NetBridge::on_collision(const net::CollisionPdu& p) {
-  world::World& w = sim_.world();
-  auto& ents = w.ents;
-  // The colliding entity is ours (we apply the outcome to it), or a third node's copy (we only
-  // record the collision and the damage of both copies, as their owners do).
-  int own = -1;
-  bool third = false;
-  if (ours(p.colliding_entity_id)) {
-    own = own_entity_of(p.colliding_entity_id);
-    if (own < 0) return;
-  } else {
-    own = remotes_.index_of(p.colliding_entity_id);
-    if (own < 0 || !ents.active[own]) return;
-    third = true;
-  }
-  const int other = remotes_.index_of(p.issuing_entity_id);
-  if (other < 0 || !ents.active[other]) return;
-  const net::RemoteEntity* issuer = remotes_.find(p.issuing_entity_id);
-  if (!issuer) return;
-  // Outcome: elastic = bounce; inelastic = kill when the issuer now reads destroyed, else stop.
-  world::Result res = world::Result::Bounce;
-  if (p.collision_type != dis::kCollisionElastic)
-    res = damage_bits(issuer->appearance) == dis::kDamageDestroyed ? world::Result::Kill : world::Result::Stop;
-  const auto& frame = w.terrain.frame();
-  const Vec3 other_pos = ents.pos[other];
-  Eigen::Vector3d ve(p.velocity.x, p.velocity.y, p.velocity.z);
-  Vec3 v_other = ents.vel[other];
-  if (ve.allFinite() && ve.norm() < kMaxSpeedMps) {
-    const Vec3 ecef = frame.to_ecef(other_pos);
-    v_other = frame.from_ecef(ecef + vv(ve)) - other_pos;
-  }
-  Vec3 n = ents.pos[own] - other_pos;
-  n.z() = 0;
-  n = n.norm() > 1e-9 ? Vec3(n.normalized()) : Vec3::UnitX();
-  world::CollisionRecord rec;
-  rec.a = std::min(own, other);
-  rec.b = std::max(own, other);
-  const double h = ents.heading_deg[other] * kDeg;
-  const Vec3 fwd(std::sin(h), std::cos(h), 0), right(std::cos(h), -std::sin(h), 0);
-  const Vec3 loc(p.location_in_entity.x, p.location_in_entity.y, p.location_in_entity.z);
-  rec.point = loc.allFinite() && loc.norm() < kMaxContactOffsetM
-                  ? Vec3(other_pos + fwd * loc.x() + right * loc.y() - Vec3::UnitZ() * loc.z())
-                  : Vec3((other_pos + ents.pos[own]) / 2);
-  rec.closing_speed_mps = std::max(0.0, (v_other - ents.vel[own]).dot(n));
-  rec.angle_deg = collision::impact_angle_deg(ents.heading_deg[rec.a], ents.heading_deg[rec.b]);
-  rec.method = "network";
-  rec.tier = "network";
-  rec.result_a = rec.result_b = res;
-  inject_.clear();
-  inject_.collisions.push_back(rec);
-  world::EntityChange mine;
-  mine.entity = own;
-  mine.set_vel = !third;
-  if (res == world::Result::Bounce && third) {
-    mine.set_vel = false;
-  } else if (res == world::Result::Bounce) {
-    // The issuer's mass as it says; left unset (0) or unusable: the mass of the kind its type
-    // maps to (models/entity_types.toml), as for the contacts we decide.
-    const double said = p.mass;
-    const double ma = std::isfinite(said) && said > 0 ? said : w.kinds[ents.kind[other]].mass_kg;
-    const double mb = w.kinds[ents.kind[own]].mass_kg;
-    Vec3 vb = ents.vel[own];
-    vb += (collision::bounce_impulse(v_other, vb, ma, mb, n) / mb) * n;
-    if (w.kinds[ents.kind[own]].mobility != world::Mobility::Air) vb.z() = 0;
-    mine.vel = vb;
-    mine.cruise_mps = static_cast<float>(vb.norm());
-  } else {
-    mine.vel = Vec3::Zero();
-    mine.cruise_mps = third ? -1.f : 0.f;
-    // Our entity's damage is ours to decide; the issuer's (and a third node's copy) arrive in
-    // their owners' appearance.
-    if (res == world::Result::Kill && !third) mine.to_state = static_cast<int>(w.kinds[ents.kind[own]].states.size()) - 1;
-  }
-  inject_.entities.push_back(mine);
-  sim_.inject(inject_);
-  inject_.clear();
-}
-
 // ---------------------------------------------------------------- decide ----
 
 bool NetBridge::decides(const collision::Contact& c) { return ownership_.decides(sim_.world(), remotes_, c); }
 
 // ---------------------------------------------------------------- send ------
-
-void NetBridge::publish_vehicles() {
-  const auto& w = sim_.world();
-  const double dt = sim_.dt();
-  const double t = w.t + dt;  // the time of the state: dynamics has stepped, w.t not yet
-  const size_t n = own_.size();
-  size_t sent_now = 0, first_deferred = n;
-  // Every vehicle in the local frame, on the tick's threads: the published acceleration (the
-  // velocity change per tick, low-pass filtered over kAccelTauS, zero at rest: a tank stopping in
-  // one tick is not sent as |a| = 100 m/s^2), the yaw rate, and whether its Entity State is surely
-  // not due (dr_bound.hpp).
-  const double alpha = dt / (kAccelTauS + dt);
-  auto local = [&](int, size_t i0, size_t i1) {
-    for (size_t i = i0; i < i1; ++i) {
-      const int e = own_[i];
-      const Vec3& v = w.ents.vel[e];
-      if (pubs_[i].has_sent()) accel_[i] += ((v - prev_vel_[i]) / dt - accel_[i]) * alpha;
-      if (!pubs_[i].has_sent() || v.norm() < kAtRestMps) accel_[i].setZero();
-      prev_vel_[i] = v;
-      yaw_rate_[i] = static_cast<float>(wrap180(w.ents.heading_deg[e] - prev_heading_[i]) * kDeg / dt);
-      prev_heading_[i] = w.ents.heading_deg[e];
-      quiet_[i] = opt_.dr_prefilter && !removed_[i] && dr_quiet(anchors_[i], pubs_[i], w, e, t);
-    }
-  };
-  if (core::Jobs* jobs = sim_.jobs()) jobs->for_chunks(n, 2048, local);
-  else local(0, 0, n);
-  // Round robin from where the last tick's cap stopped, so no vehicle waits more than a few ticks.
-  for (size_t k = 0; k < n; ++k) {
-    const size_t i = (rr_ + k) % n;
-    const int e = own_[i];
-    if (removed_[i]) continue;  // taken out by a Remove Entity
-    const std::uint32_t app = damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]);
-    const std::uint32_t group = group_at(w.ents.pos[e]);
-    // A damage change, or a move into another cell's group (announced there at once).
-    const bool changed = pubs_[i].has_sent() && (app != sent_appearance_[i] || group != sent_group_[i]);
-    if (!changed && quiet_[i]) continue;  // the exact test would say None
-    const bool capped = (!pack_ || aoi_) && sent_now >= kMaxDatagramsPerTick;
-    if (capped && !changed && first_deferred != n && opt_.dr_prefilter) continue;  // deferred whatever it says
-    net::KinematicState s = exact_state(w, e, pubs_[i], t, anchors_[i]);
-    ++exact_tests_;
-    s.acceleration = anchors_[i].jac * accel_[i];
-    s.angular_velocity = Eigen::Vector3d(0, 0, yaw_rate_[i]);
-    if (!changed && pubs_[i].needs_update(s, t) == net::DrPublisher::Reason::None) continue;
-    if (capped && !changed) {  // a damage change never waits
-      if (first_deferred == n) first_deferred = i;
-      continue;
-    }
-    fill_entity_state(w, e, own_id(e), s, pubs_[i].algorithm(), app, static_cast<std::uint8_t>(opt_.exercise), t, es_);
-    es_.header.protocol_version = static_cast<std::uint8_t>(opt_.dis_version);  // packed datagrams too
-    if (pack_ && !aoi_) {  // several Entity States to a datagram of at most 1400 octets
-      if (!batch_.add(es_)) {
-        flush_batch();
-        if (!batch_.add(es_)) {  // cannot happen for our PDUs (no variable parameters)
-          ++session_->counters().send_failures;
-          continue;
-        }
-      }
-    } else if (!session_->send_to(group, es_)) {
-      continue;
-    }
-    pubs_[i].mark_sent(s, t);
-    dr_rebase(s, pubs_[i], t, anchors_[i]);
-    digest_entity_state();
-    sent_appearance_[i] = app;
-    sent_group_[i] = group;
-    ++sent_now;
-    if (w.kinds[w.ents.kind[e]].mobility == world::Mobility::Ground) ++ground_es_sent_;
-  }
-  if (first_deferred != n) rr_ = first_deferred;
-  flush_batch();
-}
-
-void NetBridge::digest_entity_state() {
-  auto mix = [&](const void* p, size_t len) {
-    const auto* b = static_cast<const unsigned char*>(p);
-    for (size_t k = 0; k < len; ++k) es_digest_ = (es_digest_ ^ b[k]) * 1099511628211ull;
-  };
-  mix(&es_.entity_id.entity, sizeof es_.entity_id.entity);
-  mix(&es_.location, sizeof es_.location);
-  mix(&es_.linear_velocity, sizeof es_.linear_velocity);
-  mix(&es_.orientation, sizeof es_.orientation);
-  mix(&es_.dead_reckoning.linear_acceleration, sizeof es_.dead_reckoning.linear_acceleration);
-  mix(&es_.dead_reckoning.angular_velocity, sizeof es_.dead_reckoning.angular_velocity);
-  mix(&es_.appearance, sizeof es_.appearance);
-  mix(&es_.header.timestamp, sizeof es_.header.timestamp);
-}
-
-void NetBridge::flush_batch() {
-  if (!batch_.empty()) session_->send(batch_);
-  batch_.clear();
-}
-
-void NetBridge::send_deactivation(int e) {
-  const auto& w = sim_.world();
-  const std::uint32_t app = damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]) | net::kAppearanceDeactivated;
-  fill_entity_state(w, e, own_id(e), entity_truth(w, e), net::DrAlgorithm::Static, app,
-                    static_cast<std::uint8_t>(opt_.exercise), w.t, es_);
-  session_->send_to(group_at(w.ents.pos[e]), es_);
-}
-
-void NetBridge::leave() {
-  for (size_t i = 0; i < own_.size(); ++i)
-    if (!removed_[i]) send_deactivation(own_[i]);
-}
-
-void NetBridge::publish_collisions(const TickReport& r) {
-  const auto& w = sim_.world();
-  for (const auto& c : r.changes.collisions) {
-    if (c.b_fixed || c.a < 0 || c.b < 0) continue;
-    int own = -1, other = -1;
-    if (is_own_vehicle(c.a) && remotes_.is_remote(c.b)) own = c.a, other = c.b;
-    else if (is_own_vehicle(c.b) && remotes_.is_remote(c.a)) own = c.b, other = c.a;
-    if (own < 0 || !ownership_.announces(own, remotes_, other)) continue;  // not ours to announce
-    const world::Result res = own == c.a ? c.result_a : c.result_b;
-    const Vec3 v = ownership_.velocity_before(own, other, w.ents.vel[own]);
-    // To the colliding entity's cell: its owner holds that group.
-    session_->send_to(group_at(w.ents.pos[other]),
-                      collision_pdu(w, own, own_id(own), remotes_.id_of(other), next_event(), res, v, c.point));
-  }
-}
 
 void NetBridge::send_cultural(int o) {
   if (static_cast<size_t>(o) + 1 > 0xFFFF) {

@@ -4,6 +4,9 @@
 //   dis_mapping     DIS types <-> our kinds, damage <-> appearance, enumerations
 //   remote_entities vehicles of other nodes: join, pose, damage, timeout (and their events)
 //   pdu_build       Entity State / cultural feature / Fire / Detonation / Collision PDUs
+//   vehicle_publish the local vehicles' Entity States (DR, caps, round robin), deactivation
+//   collision_exchange collisions across nodes: announce, repeat, receive once (collision_outcome)
+//   repeat_ledger   Detonation and Collision PDUs repeated every heartbeat, applied once
 //   warfare_receive other simulators' Fire and Detonation (munition_table, munition_codes)
 //   sim_management  Stop/Freeze, Start/Resume, Remove Entity, Acknowledge
 //   ownership       who decides a contact between entities of two nodes
@@ -39,16 +42,18 @@
 //    decodes only the first PDU of a datagram), at most 128 a tick (the rest follow on the next
 //    ticks, round robin; a damage change never waits); NPSNET_DIS_PACK=1 packs a tick's Entity
 //    States several to a datagram (at most 1400 octets).
-//  * Collisions across nodes: ownership.hpp decides who decides. The decider applies the outcome
-//    to both sides in its world (its remote copy is display only) and sends, after the Entity
-//    State of its own side (whose appearance holds the new damage), a Collision PDU: issuing =
-//    its entity, colliding = the other, velocity/mass = the issuing entity's before the
-//    collision, collision_type 1 = elastic (outcome bounce) or 0 = inelastic (outcome kill when
-//    the issuing entity's appearance says destroyed, else stop). The owner of the colliding
-//    entity injects the same collision record (same pair, same outcomes) and applies the outcome
-//    to its own entity once (a bounce by collision::bounce_impulse, with the PDU's mass; a mass
-//    of 0 or not finite, as simulators that leave it unset send: the mass of the issuer's kind,
-//    the kind its DIS type maps to).
+//  * Collisions across nodes (collision_exchange.cpp): ownership.hpp decides who decides. The
+//    decider applies the outcome to both sides in its world (its remote copy is display only)
+//    and sends, after the Entity State of its own side, a Collision PDU: issuing = its entity,
+//    colliding = the other, velocity/mass = the issuing entity's before the collision,
+//    collision_type 1 = elastic (bounce) or 0 = inelastic (stop, kill), and the outcome itself
+//    in octet 31 (collision_outcome.hpp; PDUs without it: kill when the issuer's appearance says
+//    destroyed, else stop). It repeats the PDU unchanged every heartbeat (repeat_ledger.hpp, as
+//    Detonations). The owner of the colliding entity injects the same collision record (same
+//    pair, same outcomes) and applies the outcome to its own entity once, whoever repeats it (a
+//    bounce by collision::bounce_impulse, with the PDU's mass; a mass of 0 or not finite, as
+//    simulators that leave it unset send: the mass of the issuer's kind, the kind its DIS type
+//    maps to); a PDU naming an entity not (yet) known here is not noted, so a repeat can apply.
 //  * Fixed objects whose state changes are published as cultural-feature Entity States (kind 5,
 //    the object kind's DIS type): entity id (site, 0x8000 | application, object index + 1),
 //    damage in the standard appearance bits 3-4 (as vehicles, dis_mapping.hpp; was the state
@@ -94,7 +99,7 @@
 #include "node/area_of_interest.hpp"
 #include "node/bridge_options.hpp"
 #include "node/event_log.hpp"
-#include "node/detonation_ledger.hpp"
+#include "node/repeat_ledger.hpp"
 #include "node/dr_bound.hpp"
 #include "node/ownership.hpp"
 #include "node/remote_entities.hpp"
@@ -179,7 +184,7 @@ class NetBridge {
   nlohmann::json event(const char* type) const;
 
   void on_cultural(const net::EntityStatePdu& p);
-  void on_collision(const net::CollisionPdu& p);
+  void on_collision(const net::CollisionPdu& p, double arrival_s);
   void on_fire(const net::FirePdu& p);
   void on_detonation(const net::DetonationPdu& p, double arrival_s);
   void publish_vehicles();
@@ -249,6 +254,7 @@ class NetBridge {
   std::uint64_t fixed_unnumbered_ = 0;   // changed objects past the last cultural entity number
   std::unordered_map<int, std::uint16_t> fire_event_;  // munition index -> event number
   DetonationLedger detonations_;  // ours repeated every heartbeat; received ones applied once
+  CollisionLedger collisions_;    // the same for Collision PDUs
   double drop_detonations_s_ = 0;  // test hook NPSNET_TEST_DROP_DETONATIONS_S (bridge_options.hpp)
   std::uint64_t dropped_detonations_ = 0;
   std::uint16_t event_number_ = 0;

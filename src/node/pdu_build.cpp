@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "node/collision_outcome.hpp"
 #include "node/dis_mapping.hpp"
 
 namespace npsnet::node {
@@ -112,7 +113,7 @@ net::CollisionPdu collision_pdu(const world::World& w, int own, const net::Entit
   p.issuing_entity_id = issuing;
   p.colliding_entity_id = colliding;
   p.event_id = event;
-  p.collision_type = result == world::Result::Bounce ? dis::kCollisionElastic : dis::kCollisionInelastic;
+  set_outcome(p, result);  // collision type, and the outcome in octet 31 (collision_outcome.hpp)
   p.velocity = f3(ecef_velocity(w, ents.pos[own], own_vel));
   p.mass = static_cast<float>(w.kinds[ents.kind[own]].mass_kg);
   const Vec3 d = point - ents.pos[own];

@@ -35,7 +35,8 @@ net::DetonationPdu detonation_pdu(const world::World& w, const world::Detonation
                                   const net::EntityId& target, const net::EntityId& exploding,
                                   const net::EventId& event);
 
-// Collision issued by local entity `own` against `other`: elastic for a bounce, else inelastic;
+// Collision issued by local entity `own` against `other`: elastic for a bounce, else inelastic,
+// the outcome `result` (both sides') in octet 31 (collision_outcome.hpp);
 // velocity `own_vel` (local frame, before the response) and the kind's mass; the contact point
 // in the issuer's body frame (x forward, y right, z down).
 net::CollisionPdu collision_pdu(const world::World& w, int own, const net::EntityId& issuing,

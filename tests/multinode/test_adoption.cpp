@@ -1,4 +1,4 @@
-// Rounds of a killed node (issue 11, node/detonation_ledger.hpp "Adoption"): three nodes on
+// Rounds of a killed node (issue 11, node/repeat_ledger.hpp "Adoption"): three nodes on
 // loopback multicast (--iface 127.0.0.1, a random port, a common --start-at). Node 1's player
 // fires two unscripted rounds (--input, t = 1 s and 2 s) at the slope of ridge.asc; node 3 loses
 // both Detonations (test hook NPSNET_TEST_DROP_DETONATIONS_S=4); node 1 is SIGKILLed at t = 3 s,

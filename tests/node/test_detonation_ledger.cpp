@@ -1,4 +1,4 @@
-// DetonationLedger (node/detonation_ledger.hpp): a received round is applied once; a round of
+// DetonationLedger (node/repeat_ledger.hpp): a received round is applied once; a round of
 // another NPSNET node is adopted by the lowest live holder when nobody has repeated it for
 // (2 + rank) heartbeats; an adopter stands down when it hears the round from someone else.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <functional>
 
-#include "node/detonation_ledger.hpp"
+#include "node/repeat_ledger.hpp"
 
 namespace {
 using npsnet::node::DetonationLedger;

@@ -192,7 +192,7 @@ struct CollisionPdu {
   EntityId colliding_entity_id;
   EventId event_id;
   std::uint8_t collision_type = 0;  // 0 inelastic, 1 elastic
-  std::uint8_t padding = 0;
+  std::uint8_t padding = 0;  // octet 31; NPSNET states its collision outcome here (node/collision_outcome.hpp)
   Vec3f velocity;  // m/s, issuing entity
   float mass = 0;  // kg, issuing entity
   Vec3f location_in_entity;  // m, issuing entity's body frame

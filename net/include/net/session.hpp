@@ -19,12 +19,14 @@
 //    the last 1024 we sent (same bytes), else another simulator using our identity
 //    (Counters::own_id_clash); both are ignored.
 //  * SessionConfig::offline: no socket at all (a node fed from a recording): send() encodes and
-//    counts as usual, and the datagram goes nowhere; poll() finds nothing; transport() must not
-//    be called.
+//    counts as usual, and the datagram goes nowhere (or to the offline sink, when one is set:
+//    tests wire nodes of one process together with it); poll() finds nothing; transport() must
+//    not be called.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 
 #include "net/codec.hpp"
@@ -115,12 +117,18 @@ class Session {
   Counters& counters() noexcept { return counters_; }
   UdpTransport& transport() noexcept { return *transport_; }
   bool offline() const noexcept { return !transport_; }
+  // Offline only: every datagram sent is handed to `sink` (group, bytes) instead of nowhere.
+  using OfflineSink = std::function<void(std::uint32_t group, std::span<const std::uint8_t> bytes)>;
+  void set_offline_sink(OfflineSink sink) { sink_ = std::move(sink); }
 
  private:
   bool send_raw(std::uint32_t group, std::span<const std::uint8_t> bytes, std::uint8_t pdu_type) noexcept;
   bool transmit(std::uint32_t group, std::span<const std::uint8_t> bytes) noexcept {
     remember_sent(bytes);
-    if (!transport_) return true;  // offline: counted, sent nowhere
+    if (!transport_) {  // offline: counted, sent nowhere (or to the test's sink)
+      if (sink_) sink_(group, bytes);
+      return true;
+    }
     return group == kDestination ? transport_->send(bytes) : transport_->send_to(group, bytes);
   }
   // Our echo vs a clash: hashes of the last kSentMemory datagrams we sent (FNV-1a, 64 bits).
@@ -137,6 +145,7 @@ class Session {
 
   SessionConfig config_;
   std::optional<UdpTransport> transport_;  // empty when offline
+  OfflineSink sink_;                        // offline: where sent datagrams go (tests)
   DatagramParser parser_;
   Counters counters_;
   std::array<std::uint8_t, kMaxPduSize> buffer_{};

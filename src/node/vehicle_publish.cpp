@@ -1,0 +1,138 @@
+// Publishing the local vehicles (net_bridge.hpp "Local vehicles", "Net out cost", "Threading"):
+// each tick, the Entity States the DR thresholds, a damage change or a cell change call for, in
+// round robin past the per-tick cap; the deactivation Entity States of leave(). The dead-reckoning
+// anchors (dr_bound.hpp) keep most vehicles out of ECEF.
+#include <algorithm>
+#include <cmath>
+
+#include "node/dis_mapping.hpp"
+#include "node/net_bridge.hpp"
+#include "node/pdu_build.hpp"
+
+namespace npsnet::node {
+
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+// Entity State datagrams one tick sends at most (one PDU each); the rest go on the next ticks.
+// A receiver drains its socket once a tick: 128 datagrams fit its default receive buffer
+// (Linux rmem_default 208 KiB), where the 517 first Entity States of the default scenario did not.
+constexpr size_t kMaxDatagramsPerTick = 128;
+// Published acceleration (ours, not the standard's): low-pass time constant (s), and the speed
+// (m/s) below which a vehicle is at rest and sends none.
+constexpr double kAccelTauS = 0.5;
+constexpr double kAtRestMps = 0.05;
+
+double wrap180(double d) {
+  d = std::fmod(d + 180.0, 360.0);
+  if (d < 0) d += 360.0;
+  return d - 180.0;
+}
+
+}  // namespace
+
+void NetBridge::publish_vehicles() {
+  const auto& w = sim_.world();
+  const double dt = sim_.dt();
+  const double t = w.t + dt;  // the time of the state: dynamics has stepped, w.t not yet
+  const size_t n = own_.size();
+  size_t sent_now = 0, first_deferred = n;
+  // Every vehicle in the local frame, on the tick's threads: the published acceleration (the
+  // velocity change per tick, low-pass filtered over kAccelTauS, zero at rest: a tank stopping in
+  // one tick is not sent as |a| = 100 m/s^2), the yaw rate, and whether its Entity State is surely
+  // not due (dr_bound.hpp).
+  const double alpha = dt / (kAccelTauS + dt);
+  auto local = [&](int, size_t i0, size_t i1) {
+    for (size_t i = i0; i < i1; ++i) {
+      const int e = own_[i];
+      const Vec3& v = w.ents.vel[e];
+      if (pubs_[i].has_sent()) accel_[i] += ((v - prev_vel_[i]) / dt - accel_[i]) * alpha;
+      if (!pubs_[i].has_sent() || v.norm() < kAtRestMps) accel_[i].setZero();
+      prev_vel_[i] = v;
+      yaw_rate_[i] = static_cast<float>(wrap180(w.ents.heading_deg[e] - prev_heading_[i]) * kDeg / dt);
+      prev_heading_[i] = w.ents.heading_deg[e];
+      quiet_[i] = opt_.dr_prefilter && !removed_[i] && dr_quiet(anchors_[i], pubs_[i], w, e, t);
+    }
+  };
+  if (core::Jobs* jobs = sim_.jobs()) jobs->for_chunks(n, 2048, local);
+  else local(0, 0, n);
+  // Round robin from where the last tick's cap stopped, so no vehicle waits more than a few ticks.
+  for (size_t k = 0; k < n; ++k) {
+    const size_t i = (rr_ + k) % n;
+    const int e = own_[i];
+    if (removed_[i]) continue;  // taken out by a Remove Entity
+    const std::uint32_t app = damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]);
+    const std::uint32_t group = group_at(w.ents.pos[e]);
+    // A damage change, or a move into another cell's group (announced there at once).
+    const bool changed = pubs_[i].has_sent() && (app != sent_appearance_[i] || group != sent_group_[i]);
+    if (!changed && quiet_[i]) continue;  // the exact test would say None
+    const bool capped = (!pack_ || aoi_) && sent_now >= kMaxDatagramsPerTick;
+    if (capped && !changed && first_deferred != n && opt_.dr_prefilter) continue;  // deferred whatever it says
+    net::KinematicState s = exact_state(w, e, pubs_[i], t, anchors_[i]);
+    ++exact_tests_;
+    s.acceleration = anchors_[i].jac * accel_[i];
+    s.angular_velocity = Eigen::Vector3d(0, 0, yaw_rate_[i]);
+    if (!changed && pubs_[i].needs_update(s, t) == net::DrPublisher::Reason::None) continue;
+    if (capped && !changed) {  // a damage change never waits
+      if (first_deferred == n) first_deferred = i;
+      continue;
+    }
+    fill_entity_state(w, e, own_id(e), s, pubs_[i].algorithm(), app, static_cast<std::uint8_t>(opt_.exercise), t, es_);
+    es_.header.protocol_version = static_cast<std::uint8_t>(opt_.dis_version);  // packed datagrams too
+    if (pack_ && !aoi_) {  // several Entity States to a datagram of at most 1400 octets
+      if (!batch_.add(es_)) {
+        flush_batch();
+        if (!batch_.add(es_)) {  // cannot happen for our PDUs (no variable parameters)
+          ++session_->counters().send_failures;
+          continue;
+        }
+      }
+    } else if (!session_->send_to(group, es_)) {
+      continue;
+    }
+    pubs_[i].mark_sent(s, t);
+    dr_rebase(s, pubs_[i], t, anchors_[i]);
+    digest_entity_state();
+    sent_appearance_[i] = app;
+    sent_group_[i] = group;
+    ++sent_now;
+    if (w.kinds[w.ents.kind[e]].mobility == world::Mobility::Ground) ++ground_es_sent_;
+  }
+  if (first_deferred != n) rr_ = first_deferred;
+  flush_batch();
+}
+
+void NetBridge::digest_entity_state() {
+  auto mix = [&](const void* p, size_t len) {
+    const auto* b = static_cast<const unsigned char*>(p);
+    for (size_t k = 0; k < len; ++k) es_digest_ = (es_digest_ ^ b[k]) * 1099511628211ull;
+  };
+  mix(&es_.entity_id.entity, sizeof es_.entity_id.entity);
+  mix(&es_.location, sizeof es_.location);
+  mix(&es_.linear_velocity, sizeof es_.linear_velocity);
+  mix(&es_.orientation, sizeof es_.orientation);
+  mix(&es_.dead_reckoning.linear_acceleration, sizeof es_.dead_reckoning.linear_acceleration);
+  mix(&es_.dead_reckoning.angular_velocity, sizeof es_.dead_reckoning.angular_velocity);
+  mix(&es_.appearance, sizeof es_.appearance);
+  mix(&es_.header.timestamp, sizeof es_.header.timestamp);
+}
+
+void NetBridge::flush_batch() {
+  if (!batch_.empty()) session_->send(batch_);
+  batch_.clear();
+}
+
+void NetBridge::send_deactivation(int e) {
+  const auto& w = sim_.world();
+  const std::uint32_t app = damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]) | net::kAppearanceDeactivated;
+  fill_entity_state(w, e, own_id(e), entity_truth(w, e), net::DrAlgorithm::Static, app,
+                    static_cast<std::uint8_t>(opt_.exercise), w.t, es_);
+  session_->send_to(group_at(w.ents.pos[e]), es_);
+}
+
+void NetBridge::leave() {
+  for (size_t i = 0; i < own_.size(); ++i)
+    if (!removed_[i]) send_deactivation(own_[i]);
+}
+
+}  // namespace npsnet::node

@@ -1,0 +1,109 @@
+// Two or more nodes in one process, wired by a test (issue 11): each node's bridge has an offline
+// session whose sent datagrams (net::Session::set_offline_sink) go to the other nodes' inboxes
+// through the test's `deliver` policy (how many copies of a datagram reach a node: 0 = lost,
+// 2 = duplicated); each node drains its inbox at the start of its next tick (the bridge's source:
+// the bridge clock is then the scenario clock). Nodes tick in turn, node 1 first: deterministic,
+// no socket, no sleeping.
+#pragma once
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "node/bridge_options.hpp"
+#include "node/event_log.hpp"
+#include "node/net_bridge.hpp"
+#include "node/simulation.hpp"
+#include "support/scratch.hpp"
+#include "world/scenario.hpp"
+
+namespace npsnet::test {
+
+struct WiredNode {
+  int id = 0;
+  std::filesystem::path events;
+  std::unique_ptr<node::EventLog> log;
+  std::unique_ptr<node::Simulation> sim;
+  std::unique_ptr<node::NetBridge> bridge;
+  std::deque<std::vector<std::uint8_t>> inbox;
+  const world::World& world() const { return sim->world(); }
+  int index(const std::string& id_) const { return sim->find_entity(id_); }
+};
+
+// A datagram from node `from` to node `to`: how many copies arrive. The bytes are the datagram's.
+using Deliver = std::function<int(int from, int to, const std::vector<std::uint8_t>& bytes)>;
+
+class Wire {
+ public:
+  // Nodes 1..n of `scenario_file` (its vehicles' `node`), application = node, site 1; remote
+  // entity timeout `timeout_s` (a short one shortens the heartbeat, bridge_options.hpp).
+  Wire(const std::string& scenario_file, int n, const std::string& tag, double timeout_s, Deliver deliver)
+      : deliver_(std::move(deliver)) {
+    const world::Scenario sc = world::load_scenario(scenario_file);
+    const world::World w = world::build_world(sc);
+    for (int k = 1; k <= n; ++k) {
+      auto nd = std::make_unique<WiredNode>();
+      nd->id = k;
+      nd->events = scratch_dir() / (tag + "_n" + std::to_string(k) + ".jsonl");
+      nd->log = std::make_unique<node::EventLog>(nd->events);
+      nd->sim = std::make_unique<node::Simulation>(w, sc, *nd->log, 0.1);
+      node::BridgeOptions bo;
+      bo.offline = true;
+      bo.node = k;
+      bo.app = k;
+      bo.timeout_s = timeout_s;
+      auto session = node::open_session(bo);
+      session->set_offline_sink([this, k](std::uint32_t, std::span<const std::uint8_t> b) {
+        const std::vector<std::uint8_t> bytes(b.begin(), b.end());
+        for (auto& other : nodes_)
+          if (other->id != k)
+            for (int c = deliver_(k, other->id, bytes); c > 0; --c) other->inbox.push_back(bytes);
+      });
+      nd->bridge = std::make_unique<node::NetBridge>(bo, std::move(session), *nd->sim, *nd->log);
+      nd->bridge->attach();
+      WiredNode* self = nd.get();
+      nd->bridge->set_source([self](double now_s, node::NetBridge& b) {
+        while (!self->inbox.empty()) {
+          const auto d = std::move(self->inbox.front());
+          self->inbox.pop_front();
+          b.receive(d, now_s);
+        }
+      });
+      nodes_.push_back(std::move(nd));
+    }
+  }
+  // Every node ticks once, in order, `ticks` times.
+  void run(int ticks) {
+    for (int i = 0; i < ticks; ++i)
+      for (auto& nd : nodes_) nd->sim->tick();
+  }
+  WiredNode& node(int k) { return *nodes_.at(static_cast<size_t>(k - 1)); }
+  // The events node k has written so far (the log is flushed every tick).
+  std::vector<nlohmann::json> events(int k) {
+    std::vector<nlohmann::json> out;
+    std::ifstream in(node(k).events);
+    for (std::string line; std::getline(in, line);)
+      if (!line.empty()) out.push_back(nlohmann::json::parse(line));
+    return out;
+  }
+
+ private:
+  Deliver deliver_;
+  std::vector<std::unique_ptr<WiredNode>> nodes_;
+};
+
+// The PDU type of a datagram of one PDU (header octet 2), and an Entity State's damage bits.
+inline int pdu_type(const std::vector<std::uint8_t>& d) { return d.size() > 2 ? d[2] : -1; }
+inline unsigned es_damage(const std::vector<std::uint8_t>& d) {
+  if (d.size() < 88) return 0;
+  const std::uint32_t app = (std::uint32_t(d[84]) << 24) | (std::uint32_t(d[85]) << 16) | (std::uint32_t(d[86]) << 8) | d[87];
+  return (app >> 3) & 3u;
+}
+
+}  // namespace npsnet::test
