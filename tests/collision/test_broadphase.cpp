@@ -56,8 +56,8 @@ TEST(ShapeTiers, NestOnRealModelsAtRandomPoses) {
     const double dc = ((pb.rot * b.sphere_centre + pb.pos) - (pa.rot * a.sphere_centre + pa.pos)).norm();
     // The hull lies inside both the bounding sphere and the box (the box's corners may stick
     // out of the sphere, so the box is only a test between the sphere and the hull).
-    if (hull) EXPECT_LE(dc, reach * 1.0001);
-    if (hull) EXPECT_TRUE(box) << trial;
+    if (hull) { EXPECT_LE(dc, reach * 1.0001); }
+    if (hull) { EXPECT_TRUE(box) << trial; }
     if (mesh) {
       EXPECT_TRUE(hull) << trial;
       ++mesh_hits;
@@ -156,7 +156,7 @@ TEST(ShapeTiers, SweptMeshAgreesWithDenseSamplingOnRealModels) {
       q.pos += d * (k / 400.0);
       sampled = collision::mesh_overlap(a, pa, b, q, sc);
     }
-    if (sampled) EXPECT_TRUE(swept) << "trial " << trial;  // sampling can only miss, never invent
+    if (sampled) { EXPECT_TRUE(swept) << "trial " << trial; }  // sampling can only miss, never invent
     hits += swept;
   }
   EXPECT_GT(hits, 30);

@@ -84,7 +84,7 @@ Verdict judge(const std::string& scenario_text) {
   const auto r = test::npsnet_cli("run --no-render --quiet --seconds 3 --scenario " + (kDir / "s.toml").string() + " --events " +
                                   events.string());
   v.check = c.rc, v.run = r.rc, v.text = c.text + r.text;
-  if (r.rc != 0) EXPECT_FALSE(fs::exists(events)) << "the run wrote its log before rejecting the input";
+  if (r.rc != 0) { EXPECT_FALSE(fs::exists(events)) << "the run wrote its log before rejecting the input"; }
   return v;
 }
 

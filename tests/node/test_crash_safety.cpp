@@ -53,7 +53,7 @@ bool whole_png(const fs::path& f) {
 void expect_whole_lines(const fs::path& log, int& lines) {
   std::ifstream in(log, std::ios::binary);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!text.empty()) EXPECT_EQ(text.back(), '\n') << log << ": ends in the middle of a line";
+  if (!text.empty()) { EXPECT_EQ(text.back(), '\n') << log << ": ends in the middle of a line"; }
   size_t at = 0;
   while (at < text.size()) {
     const size_t nl = text.find('\n', at);

@@ -162,7 +162,7 @@ TEST_P(AppendixA, MissileHitsTank) {
   EXPECT_EQ(damage_states("tank8"), std::vector<std::string>{"wreck"});  // killed at once
   // The ground under it is untouched: no crater within 100 m of the impact (x and y).
   for (const auto& e : default_run().events) {
-    if (e["event"] == "crater") EXPECT_GT(distance_2d(e["point"], (*hit)["point"]), 100) << e.dump();
+    if (e["event"] == "crater") { EXPECT_GT(distance_2d(e["point"], (*hit)["point"]), 100) << e.dump(); }
   }
 }
 

@@ -53,7 +53,7 @@ TEST(SnapshotPolicy, ImminentExactlyHalfASecondBeforeAndResultOneSecondAfter) {
       const double t = s["t"], scene = s["scene_t"];
       if (ends_with(f, "-imminent.png")) {
         // The event it shows is logged at this tick, t; the frame shows the world of t - 0.5 s.
-        if (t >= 0.5) EXPECT_NEAR(scene, t - 0.5, 0.0011) << f;
+        if (t >= 0.5) { EXPECT_NEAR(scene, t - 0.5, 0.0011) << f; }
         imminent_t[f.substr(0, f.size() - 13)] = t;
         ++imminent;
       } else if (ends_with(f, "-result.png")) {

@@ -23,7 +23,7 @@ TEST(SpentRounds, AreReclaimedAndKeepTheirOwnNames) {
   const int shots = 30;
   size_t most = 0;
   for (int i = 0; i < shots * 30; ++i) {
-    if (i % 30 == 0) ASSERT_GE(sim.fire(tank, he, Vec3(900, 1000, 100), -1, ""), 0);
+    if (i % 30 == 0) { ASSERT_GE(sim.fire(tank, he, Vec3(900, 1000, 100), -1, ""), 0); }
     sim.tick();
     most = std::max(most, sim.world().ents.size());
   }
