@@ -124,67 +124,60 @@ Score score(collision::Detector& det, const world::World& w, const std::map<Key,
   return s;
 }
 
-// Vehicles placed apart from each other (their thesis spheres, times `spacing`, apart where they
-// end the tick), 10-25 m/s: the contacts are the ones made in the tick. With `objects`, as many
-// fixed objects first, the kinds in turn, and the vehicles placed so that their thesis spheres
-// and the objects' are kStartSpacing apart where they start the tick (the true shapes, at most
-// 1/0.9 of the thesis spheres, apart: no contact from the tick's start) and kEndSpacing where
-// they end it (so that some meet in the tick).
+// Every vehicle drawn with its heading and speed (10-25 m/s) first and placed so that the
+// thesis spheres of it and of everything placed before are kStartSpacing apart where they start
+// the tick (the true shapes, at most 1/0.9 of the thesis spheres: no contact from the tick's
+// start, so every contact has a point to compare) and kEndSpacing where they end it (so that
+// some meet in the tick). With `objects`, as many fixed objects first, the kinds in turn.
 constexpr double kStartSpacing = 1.12, kEndSpacing = 0.8;
-world::World scene(int n, double side, int objects, double spacing) {
+constexpr double kTickS = 0.1;  // the one tick every part detects
+world::World scene(int n, double side, int objects) {
   world::World w = test::flat_world();
   std::mt19937_64 rng(13);
   std::uniform_real_distribution<double> u(0, 1);
   const double x0 = 1000 - side / 2;
-  std::vector<Vec2> at;
+  std::vector<Vec2> at, back_of;  // where each item ends the tick, and its way back to its start
   std::vector<double> rad;
-  // back: where the vehicle starts the tick, from its end (clear there too)
-  auto free_spot = [&](double r, Vec2& p, const Vec2& back = Vec2::Zero()) {
+  auto free_spot = [&](double r, Vec2& p, const Vec2& back) {
     for (int tries = 0; tries < 100; ++tries) {
       p = Vec2(x0 + side * u(rng), x0 + side * u(rng));
       bool apart = true;
       for (size_t j = 0; j < at.size() && apart; ++j)
-        apart = back == Vec2::Zero() ? (at[j] - p).norm() >= spacing * (r + rad[j])
-                                     : (at[j] - p).norm() >= kEndSpacing * (r + rad[j]) &&
-                                           (at[j] - p - back).norm() >= kStartSpacing * (r + rad[j]);
+        apart = (at[j] - p).norm() >= kEndSpacing * (r + rad[j]) &&
+                (at[j] + back_of[j] - p - back).norm() >= kStartSpacing * (r + rad[j]);
       if (apart) return true;
     }
     return false;
   };
+  auto placed = [&](const Vec2& p, const Vec2& back, double r) { at.push_back(p), back_of.push_back(back), rad.push_back(r); };
   const char* fixed_kinds[] = {"tree", "telephone_pole", "building", "bunker", "watertower", "bush", "rock"};
   for (int i = 0; i < objects; ++i) {
     const char* k = fixed_kinds[i % 7];
     const double r = w.kinds[w.kinds.find(k)].radius_m;
     Vec2 p;
-    if (!free_spot(r, p)) continue;
+    if (!free_spot(r, p, Vec2::Zero())) continue;
     const int o = test::add_fixed(w, "o" + std::to_string(i), k, p.x(), p.y());
     w.fixed.heading_deg[o] = static_cast<float>(360 * u(rng));
-    at.push_back(p), rad.push_back(r);
+    placed(p, Vec2::Zero(), r);
   }
   const char* kinds[] = {"m1a1", "bmp", "hmmwv"};
   for (int i = 0; i < n; ++i) {
     const double r = w.kinds[w.kinds.find(kinds[i % 3])].radius_m;
+    const double h = 360 * u(rng), v = 10 + 15 * u(rng);
+    const Vec2 back = -heading_to_dir(h) * v * kTickS;
     Vec2 p;
-    if (objects > 0) {  // vehicle-vs-fixed: clear at both ends of the tick (heading, speed drawn first)
-      const double h = 360 * u(rng), v = 10 + 15 * u(rng);
-      if (!free_spot(r, p, -heading_to_dir(h) * v * 0.1)) continue;
-      const int e = test::add_vehicle(w, "bg" + std::to_string(i), kinds[i % 3], p.x(), p.y(), h, v);
-      w.ents.snapshots[e] = 0;
-      at.push_back(p), rad.push_back(r);
-      continue;
-    }
-    if (!free_spot(r, p)) continue;
-    const int e = test::add_vehicle(w, "bg" + std::to_string(i), kinds[i % 3], p.x(), p.y(), 360 * u(rng), 10 + 15 * u(rng));
+    if (!free_spot(r, p, back)) continue;
+    const int e = test::add_vehicle(w, "bg" + std::to_string(i), kinds[i % 3], p.x(), p.y(), h, v);
     w.ents.snapshots[e] = 0;
-    at.push_back(p), rad.push_back(r);
+    placed(p, back, r);
   }
   test::index_fixed(w);
   return w;
 }
 
 int accuracy(int n, double side, bool fixed, std::string csv) {
-  const double dt = 0.1;
-  const world::World w = scene(n, side, fixed ? n : 0, 1.0);
+  const double dt = kTickS;
+  const world::World w = scene(n, side, fixed ? n : 0);
   // The pairs that need a narrow phase: the tier choices of an ample budget.
   collision::Detector ample(collision::options_from("continuous", "auto", dt));
   ample.set_budget_ms(1e9);
@@ -242,7 +235,7 @@ int crowd(int n, std::string csv) {
   w.ents = world::Entities{};
   bench::add_crowd(w, n);
   for (auto& s : w.ents.snapshots) s = 0;  // background traffic: nobody snapshots, drives or watches it
-  const double dt = 0.1;
+  const double dt = kTickS;
   std::vector<Vec3> step;
   for (size_t e = 0; e < w.ents.size(); ++e) step.push_back(w.ents.vel[e] * dt);
   if (csv.empty()) csv = std::string(NPSNET_SOURCE_DIR) + "/bench/results/crowd_budget.csv";

@@ -18,13 +18,16 @@ b(x) = x > 0 ? x : 0.03
 do for [which in "vehicle-vehicle vehicle-fixed"] {
   f = which eq "vehicle-vehicle" ? "bench/results/budget_error.csv" : "bench/results/budget_error_fixed.csv"
   unset logscale y
+  set key at graph 0.03, 0.86 left top Left reverse
   set ylabel "pairs"
   set title which . ": false positives and misses against FCL, pairs lowered"
   plot f skip 1 using (b($1)):6 with linespoints pt 7 lw 2 title "false positives", \
        f skip 1 using (b($1)):7 with linespoints pt 5 lw 2 title "misses", \
-       f skip 1 using (b($1)):3 with linespoints pt 4 lw 1 dt 2 title "pairs lowered below their exact tier", \
+       f skip 1 using (b($1)):3 with linespoints pt 4 lw 1 dt 2 title "pairs lowered below exact tier", \
        f skip 1 using (b($1)):5 with lines lw 1 dt 3 lc rgb "gray40" title "FCL contacts (truth)"
   set logscale y
+  set key default
+  set key inside bottom left Left reverse
   set ylabel "contact point error (m, log)"
   set title which . ": contact point error, contacts both find"
   plot f skip 1 using (b($1)):8 with linespoints pt 7 lw 2 title "median", \
