@@ -17,7 +17,9 @@
 #   41 s        every node writes its world (--state-out, --state-at: one heartbeat after the faults)
 #   42 s        every node ends
 # Then every node must hold the same world: the same vehicles with the same damage states, the
-# same changed objects, the same craters (tools: python3 compares the state files). With
+# same changed objects, the same craters (tools: python3 compares the state files), and the same
+# collisions across nodes with the same outcomes (each node's event log of its last run: pairs of
+# vehicles of two nodes, by ids, with outcome_a and outcome_b). With
 # --control the same exercise runs with no faults at all (nodes 1-4 from the start, no kill,
 # no partition, clean links), the reference.
 #
@@ -117,22 +119,43 @@ PIDS=()
 for pid in "${SHAPERS[@]}"; do kill -TERM "$pid" 2>/dev/null; wait "$pid" 2>/dev/null || true; done
 SHAPERS=()
 cat "$OUT"/link?.log | grep linkshaper >&2 || true
-python3 - "$OUT" <<'PY' || rc=1
-import json, sys
+python3 - "$OUT" "$SCENARIO" <<'PY' || rc=1
+import json, os, sys, tomllib
 out = sys.argv[1]
+with open(sys.argv[2], "rb") as f:
+    owner = {v["id"]: v["node"] for v in tomllib.load(f).get("vehicle", [])}
+
+def collisions(k):  # cross-node collisions of node k's last run: sorted (a, b, outcome_a, outcome_b)
+    path = "%s/events_n%db.jsonl" % (out, k)
+    if not os.path.exists(path):
+        path = "%s/events_n%d.jsonl" % (out, k)
+    found = []
+    with open(path) as f:
+        for line in f:
+            e = json.loads(line)
+            if e.get("event") != "collision" or owner.get(e["a"]) is None or owner.get(e["b"]) is None:
+                continue
+            if owner[e["a"]] == owner[e["b"]]:
+                continue
+            a, b, oa, ob = e["a"], e["b"], e["outcome_a"], e["outcome_b"]
+            found.append((a, b, oa, ob) if a < b else (b, a, ob, oa))
+    return sorted(found)
+
 worlds = {}
 for k in (1, 2, 3, 4):
     with open("%s/state_%d.json" % (out, k)) as f:
         s = json.load(f)
     worlds[k] = {"vehicles": sorted((e["id"], e["state"]) for e in s["entities"]),
                  "fixed": sorted((o["id"], o["state"]) for o in s["fixed"]),
-                 "craters": [tuple(c) for c in s["craters"]]}
+                 "craters": [tuple(c) for c in s["craters"]],
+                 "collisions": collisions(k)}
 ref = worlds[1]
 print("faults: node 1 world: %d vehicles %s, changed objects %s, craters %s"
       % (len(ref["vehicles"]), ref["vehicles"], ref["fixed"], ref["craters"]), file=sys.stderr)
+print("faults: node 1 collisions across nodes: %s" % ref["collisions"], file=sys.stderr)
 bad = 0
 for k in (2, 3, 4):
-    for what in ("vehicles", "fixed", "craters"):
+    for what in ("vehicles", "fixed", "craters", "collisions"):
         if worlds[k][what] != ref[what]:
             bad += 1
             print("faults: node %d disagrees on %s: %s (node 1: %s)" % (k, what, worlds[k][what], ref[what]), file=sys.stderr)

@@ -2,7 +2,8 @@
 // link impaired in user space (loss 20 %, duplicates 5 %, reordering 25 %, 20 +- 10 ms), with a
 // 10 s partition that heals, a node killed with SIGKILL and started again, and a late joiner 30 s
 // in, both given the exercise's start time (they join at its current time); 5 s after the faults stop every node writes its world. The script exits 0 only when all
-// four worlds agree (vehicles and damage states, changed objects, craters). A control run of the
+// four worlds agree (vehicles and damage states, changed objects, craters) and their event logs
+// the same collisions across nodes with the same outcomes. A control run of the
 // same exercise without faults is the reference for what does not depend on timing: the craters
 // and the changed objects must be the control's. Skips where namespaces are not available (77).
 // Each run is bounded (nodes end 44 s after the start; the script kills them 30 s later); the test
@@ -38,12 +39,19 @@ TEST(Faults, FourNodesAgreeAfterLossPartitionKillAndLateJoin) {
   int rc = run_script(procs, control, {"--control"}, out);
   if (rc == 77) GTEST_SKIP() << out;
   ASSERT_EQ(rc, 0) << out;
+  // The script compares every node's collisions across nodes (pairs, outcome_a, outcome_b) with
+  // node 1's and prints node 1's: the kill of t1 and a2, once.
+  const std::string kKill = "collisions across nodes: [('a2', 't1', 'kill', 'kill')]";
+  EXPECT_NE(out.find(kKill), std::string::npos) << out;
   const auto faulty = lan::fresh_dir("faults");
   rc = run_script(procs, faulty, {}, out);
   ASSERT_EQ(rc, 0) << out;
   // The faults happened: frames lost, duplicated, reordered and cut on the links.
   for (const char* what : {"lost", "duplicated", "reordered"}) EXPECT_NE(out.find(std::string(what) + " "), std::string::npos);
   EXPECT_NE(out.find("t=12 node 3 killed"), std::string::npos) << out;
+  // Whether t1 and a2 meet here depends on a2's first Entity State reaching node 1 before ~3 s
+  // (a lost one hides a2 for a heartbeat: issue 11, not yet mended): the script's comparison says
+  // that every node logged the same collisions across nodes, whichever there were.
   const json ref = state(control, 1);
   ASSERT_TRUE(ref.is_object());
   EXPECT_EQ(ref["craters"].size(), 3u) << "three rounds, three craters";
