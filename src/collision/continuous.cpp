@@ -367,7 +367,10 @@ void Detector::detect_continuous(const world::World& w) {
       // turn * |centre| (the turn bounded by the sum of the three angles' changes).
       if (top != Tier::Sphere && start_hpr_[e] != now) {
         double turn = 0;
-        for (int k = 0; k < 3; ++k) turn += std::abs(std::remainder(double(now[k]) - start_hpr_[e][k], 360.0));
+        for (int k = 0; k < 3; ++k) {
+          const double a = double(now[k]) - start_hpr_[e][k];  // within a half turn remainder gives a itself
+          turn += std::abs(std::abs(a) < 180 ? a : std::remainder(a, 360.0));
+        }
         r_bound_[i] += static_cast<float>(turn * kPi / 180 * s.sphere_centre.norm());
       }
       boxes_[i] = swept_box(c0_[i], c1_[i], r_bound_[i]);

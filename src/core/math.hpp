@@ -18,8 +18,10 @@ inline constexpr double rad2deg(double r) { return r * 180.0 / kPi; }
 inline constexpr double kmh2mps(double v) { return v / 3.6; }
 inline constexpr double mps2kmh(double v) { return v * 3.6; }
 
-// Wrap an angle in degrees to [0, 360).
+// Wrap an angle in degrees to [0, 360). An angle already in range is returned as it is (what
+// fmod gives for it, -0 included: the same bits without the libm call of the hot loops).
 inline double wrap360(double deg) {
+  if (deg >= 0.0 && deg < 360.0) return deg;
   double r = std::fmod(deg, 360.0);
   return r < 0 ? r + 360.0 : r;
 }

@@ -36,6 +36,8 @@ void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::
 // Terrain following for a ground vehicle at its current (x, y): sets z, pitch and roll from the
 // terrain under the corners of its footprint (the intact model's extent).
 void follow_terrain(world::World& w, int e);
+// The same, given f = heading_to_dir(ents.heading_deg[e]) (the caller's, to spare its sin and cos).
+void follow_terrain_along(world::World& w, int e, const Vec2& f);
 
 // Decides a round of kind `munition` fired from `shooter` at a point (or an entity when target >= 0,
 // which a guided kind then tracks); world::apply launches it (takes the round, adds the munition

@@ -54,6 +54,7 @@ void step_vehicle(world::World& w, int e, double dt) {
     if (to.norm() > 1e-6) heading = turn_towards(heading, dir_to_heading(to), turn_rate_dps(k.mobility) * dt);
   }
   const Vec2 d = heading_to_dir(heading);
+  const double d_heading = heading;  // the heading d points along
   Vec3 next = ents.pos[e] + Vec3(d.x(), d.y(), 0) * (speed * dt);
   next.x() = std::clamp(next.x(), 0.0, w.terrain.width_m());
   next.y() = std::clamp(next.y(), 0.0, w.terrain.depth_m());
@@ -79,7 +80,10 @@ void step_vehicle(world::World& w, int e, double dt) {
   ents.vel[e] = (next - ents.pos[e]) / dt;
   ents.pos[e] = next;
   ents.heading_deg[e] = static_cast<float>(heading);
-  if (k.mobility == Mobility::Ground) follow_terrain(w, e);
+  // Terrain following needs the direction of the stored (float) heading: d when the heading is
+  // that float (no turn, or a turn to a float), else its own sin and cos.
+  if (k.mobility == Mobility::Ground)
+    follow_terrain_along(w, e, static_cast<double>(ents.heading_deg[e]) == d_heading ? d : heading_to_dir(ents.heading_deg[e]));
   if (k.mobility == Mobility::Ship || k.mobility == Mobility::Air) ents.pitch_deg[e] = ents.roll_deg[e] = 0;
   burn_fuel(w, e, speed, dt);
 }
@@ -149,13 +153,14 @@ void step_munition(world::World& w, int e, double dt, std::vector<GroundImpact>&
 
 }  // namespace
 
-void follow_terrain(world::World& w, int e) {
+void follow_terrain(world::World& w, int e) { follow_terrain_along(w, e, heading_to_dir(w.ents.heading_deg[e])); }
+
+void follow_terrain_along(world::World& w, int e, const Vec2& f) {
   auto& ents = w.ents;
   const world::Kind& k = w.kinds[ents.kind[e]];
   const world::Model& m = w.models[k.models[0]];
   const double half_len = std::max(0.5, 0.5 * static_cast<double>(m.bbox_max.y() - m.bbox_min.y()));
   const double half_wid = std::max(0.5, 0.5 * static_cast<double>(m.bbox_max.x() - m.bbox_min.x()));
-  const Vec2 f = heading_to_dir(ents.heading_deg[e]);
   const Vec2 r(f.y(), -f.x());  // right of forward
   const Vec2 c(ents.pos[e].x(), ents.pos[e].y());
   auto h = [&](const Vec2& p) { return w.terrain.height(p.x(), p.y()); };
@@ -164,8 +169,10 @@ void follow_terrain(world::World& w, int e) {
   const double br = h(c - f * half_len + r * half_wid), bl = h(c - f * half_len - r * half_wid);
   const double hf = 0.5 * (fr + fl), hb = 0.5 * (br + bl), hr = 0.5 * (fr + br), hl = 0.5 * (fl + bl);
   ents.pos[e].z() = 0.25 * (hf + hb + hr + hl);
-  ents.pitch_deg[e] = static_cast<float>(rad2deg(std::atan2(hf - hb, 2 * half_len)));
-  ents.roll_deg[e] = static_cast<float>(rad2deg(std::atan2(hl - hr, 2 * half_wid)));  // right side down +
+  // Level ground (rise +-0, run >= 1 m): atan2 gives the rise itself; spare the call.
+  auto slope_deg = [](double rise, double run) { return rise == 0 ? rise : rad2deg(std::atan2(rise, run)); };
+  ents.pitch_deg[e] = static_cast<float>(slope_deg(hf - hb, 2 * half_len));
+  ents.roll_deg[e] = static_cast<float>(slope_deg(hl - hr, 2 * half_wid));  // right side down +
 }
 
 void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::Jobs* jobs) {
