@@ -16,14 +16,19 @@
 // 1- and 2-thread runs of each kind run the same ticks (their event logs are compared: they must
 // be the same bytes, else the bench stops). Past 32,767 entities the node numbers its entities
 // under several DIS applications (node/ownership.hpp), so the whole tick is measured at every N.
-// Usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...]
+// Usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T]]
 //   default N = 500 ... 200,000 -> bench/results/tick_scaling.csv; --quick: 500 and 5,000, no CSV.
+//   --one 1,2: only the node with net on (1) or off (0) on that many threads, `warm` + T ticks
+//   (default: the table's), its median printed, no CSV: for a profiler (callgrind
+//   --toggle-collect='npsnet::node::Simulation::tick()': two runs, T and T + 30, give the
+//   instructions of 30 steady ticks).
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -102,15 +107,22 @@ struct Node {
 int main(int argc, char** argv) {
   std::vector<int> ns = {500, 1000, 2000, 5000, 10000, 20000, 50000, 100000, 200000};
   std::string csv = std::string(NPSNET_SOURCE_DIR) + "/bench/results/tick_scaling.csv";
+  int one_net = -1, one_threads = 1, ticks_override = 0;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) ns = {500, 5000}, csv.clear();
+    else if (!std::strcmp(argv[i], "--one") && i + 1 < argc &&
+             std::sscanf(argv[++i], "%d,%d", &one_net, &one_threads) == 2 && (one_net == 0 || one_net == 1) &&
+             one_threads >= 1)
+      csv.clear();
+    else if (!std::strcmp(argv[i], "--ticks") && i + 1 < argc && (ticks_override = std::atoi(argv[++i])) > 0) {
+    }
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
     else if (!std::strcmp(argv[i], "--n") && i + 1 < argc) {
       ns.clear();
       std::stringstream ss(argv[++i]);
       for (std::string t; std::getline(ss, t, ',');) ns.push_back(std::stoi(t));
     } else {
-      std::fprintf(stderr, "usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...]\n");
+      std::fprintf(stderr, "usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T]]\n");
       return 2;
     }
   }
@@ -128,8 +140,16 @@ int main(int argc, char** argv) {
     sc.background_vehicles = n;
     const world::World w = world::build_world(sc);
     // Short runs at the largest N (a few minutes in all on the 2-core machine).
-    const int ticks = n <= 5000 ? 41 : n <= 20000 ? 21 : n <= 50000 ? 11 : n <= 100000 ? 7 : 5;
+    const int ticks = ticks_override ? ticks_override : n <= 5000 ? 41 : n <= 20000 ? 21 : n <= 50000 ? 11 : n <= 100000 ? 7 : 5;
     const int warm = n <= 50000 ? 5 : 3;
+    if (one_net >= 0) {  // one node alone (profiling)
+      Node nd(w, sc, one_threads, one_net == 1, "-one.jsonl");
+      for (int i = 0; i < warm; ++i) nd.sim.tick();
+      for (int i = 0; i < ticks; ++i) nd.timed_tick();
+      std::printf("%8d %9zu %6d | %s, %d thread(s): median %.3f ms, cpu %.3f ms | %d\n", n, w.ents.size(), ticks,
+                  one_net ? "net on" : "net off", one_threads, nd.median(), nd.cpu_median(), nd.collisions());
+      continue;
+    }
     std::vector<std::unique_ptr<Node>> nodes;  // [net off 1t, net off 2t, net 1t, net 2t]
     for (int k = 0; k < 4; ++k)
       nodes.push_back(std::make_unique<Node>(w, sc, 1 + k % 2, k >= 2, "-" + std::to_string(k) + ".jsonl"));

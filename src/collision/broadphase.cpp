@@ -2,7 +2,6 @@
 #include "collision/broadphase.hpp"
 
 #include <algorithm>
-#include <cassert>
 
 namespace npsnet::collision {
 
@@ -36,45 +35,68 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
   uint32_t nb = 1;
   while (nb < n) nb <<= 1;  // about one bucket per box: the table stays in L1/L2
   const uint32_t mask = nb - 1;
-  start_.assign(nb + 1, 0);
   is_large_.assign(n, 0);
-  bucket_.resize(4 * static_cast<size_t>(n));  // at most 2 x 2 cells a box
-  uint32_t* bucket = bucket_.data();
-  uint32_t* count = start_.data() + 1;
-  size_t nbucket = 0;
-  // Count: each ordinary box in the (at most 2 x 2) cells it overlaps.
-  for (uint32_t i = 0; i < n; ++i) {
-    const Box& b = boxes[i];
-    if (std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]) > cap) {
-      large_.push_back(i);
-      is_large_[i] = 1;
-      continue;
-    }
-    const int32_t i0 = ifloor(b.lo[0] * inv), i1 = ifloor(b.hi[0] * inv);
-    const int32_t j0 = ifloor(b.lo[1] * inv), j1 = ifloor(b.hi[1] * inv);
-    for (int32_t y = j0; y <= j1; ++y)
-      for (int32_t x = i0; x <= i1; ++x) {
-        const uint32_t h = hash_cell(x, y, mask);
-        bucket[nbucket++] = h;
-        ++count[h];
+  bucket_.resize(4 * static_cast<size_t>(n));  // at most 2 x 2 cells a box: box i's from 4 i
+  // Count, per range of boxes (on the pool when there is one): each ordinary box in the (at most
+  // 2 x 2) cells it overlaps, into the range's own counts per bucket.
+  constexpr size_t kBoxGrain = 2048;
+  const int kc = jobs ? jobs->chunks(n, kBoxGrain) : 1;
+  if (count_.size() < static_cast<size_t>(kc)) count_.resize(kc), large_chunk_.resize(kc);
+  auto count = [&](int c, size_t b0, size_t b1) {
+    std::vector<uint32_t>& cnt = count_[c];
+    cnt.assign(nb, 0);
+    large_chunk_[c].clear();
+    for (size_t i = b0; i < b1; ++i) {
+      const Box& b = boxes[i];
+      if (std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]) > cap) {
+        large_chunk_[c].push_back(static_cast<uint32_t>(i));
+        is_large_[i] = 1;
+        continue;
       }
+      const int32_t i0 = ifloor(b.lo[0] * inv), i1 = ifloor(b.hi[0] * inv);
+      const int32_t j0 = ifloor(b.lo[1] * inv), j1 = ifloor(b.hi[1] * inv);
+      uint32_t* bucket = bucket_.data() + 4 * i;
+      for (int32_t y = j0; y <= j1; ++y)
+        for (int32_t x = i0; x <= i1; ++x) {
+          const uint32_t h = hash_cell(x, y, mask);
+          *bucket++ = h;
+          ++cnt[h];
+        }
+    }
+  };
+  if (kc > 1) jobs->for_chunks(n, kBoxGrain, count);
+  else count(0, 0, n);
+  // Offsets, bucket by bucket and within a bucket range by range: each bucket lists its boxes in
+  // box order, as one pass over all boxes would. count_[c][h] becomes range c's next slot in h.
+  start_.resize(nb + 1);
+  uint32_t next = 0;
+  for (uint32_t h = 0; h < nb; ++h) {
+    start_[h] = next;
+    for (int c = 0; c < kc; ++c) {
+      const uint32_t k = count_[c][h];
+      count_[c][h] = next;
+      next += k;
+    }
   }
-  for (uint32_t h = 0; h < nb; ++h) start_[h + 1] += start_[h];
-  entries_.resize(start_[nb]);
-  // Fill (start_[h] advances to the bucket's end, then is shifted back).
-  size_t q = 0;
-  for (uint32_t i = 0; i < n; ++i) {
-    if (is_large_[i]) continue;
-    const Box& b = boxes[i];
-    const int32_t i0 = ifloor(b.lo[0] * inv), i1 = ifloor(b.hi[0] * inv);
-    const int32_t j0 = ifloor(b.lo[1] * inv), j1 = ifloor(b.hi[1] * inv);
-    for (int32_t y = j0; y <= j1; ++y)
-      for (int32_t x = i0; x <= i1; ++x) entries_[start_[bucket[q++]]++] = Entry{b.lo[0], b.lo[1], b.hi[0], b.hi[1], x, y, i};
-  }
-  assert(q == nbucket);
-  for (uint32_t h = nb; h > 0; --h) start_[h] = start_[h - 1];
-  start_[0] = 0;
-  assert(start_[nb] == entries_.size());
+  start_[nb] = next;
+  entries_.resize(next);
+  for (int c = 0; c < kc; ++c) large_.insert(large_.end(), large_chunk_[c].begin(), large_chunk_[c].end());
+  // Fill, per the same ranges: each writes only its own slots.
+  auto fill = [&](int c, size_t b0, size_t b1) {
+    std::vector<uint32_t>& slot = count_[c];
+    for (size_t i = b0; i < b1; ++i) {
+      if (is_large_[i]) continue;
+      const Box& b = boxes[i];
+      const int32_t i0 = ifloor(b.lo[0] * inv), i1 = ifloor(b.hi[0] * inv);
+      const int32_t j0 = ifloor(b.lo[1] * inv), j1 = ifloor(b.hi[1] * inv);
+      const uint32_t* bucket = bucket_.data() + 4 * i;
+      for (int32_t y = j0; y <= j1; ++y)
+        for (int32_t x = i0; x <= i1; ++x)
+          entries_[slot[*bucket++]++] = Entry{b.lo[0], b.lo[1], b.hi[0], b.hi[1], x, y, static_cast<uint32_t>(i)};
+    }
+  };
+  if (kc > 1) jobs->for_chunks(n, kBoxGrain, fill);
+  else fill(0, 0, n);
   // Pairs inside each bucket: same cell, reported in the first cell the two boxes share.
   // Ranges of buckets, each into its own buffer (chunk_out_), concatenated in range order.
   const int k = jobs ? jobs->chunks(nb, 4096) : 1;

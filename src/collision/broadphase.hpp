@@ -6,6 +6,8 @@
 //    contiguous array; then every bucket's entries are tested pairwise, a pair reported only in
 //    the first cell the two boxes share (and only between entries of the same cell when two
 //    cells share a bucket). Rebuilt every call into reused buffers (no allocation once warm).
+//    Given a core::Jobs, the listing is built per range of boxes too (counts per range, offsets
+//    bucket by bucket then range by range, each range filling its own slots): the same array.
 //    Linear in N for bounded density, also where bodies crowd (the cell shrinks to the bodies).
 //  Fixed objects are the world's one grid (world/fixed_grid.hpp), not indexed again here.
 //  brute_pairs: the plain O(N^2) reference the tests compare MovingGrid with.
@@ -56,7 +58,9 @@ class MovingGrid {
   };
   double cell_ = 1;
   std::vector<uint32_t> start_;       // CSR over hash buckets
-  std::vector<uint32_t> bucket_;      // per (box, cell) listing: its bucket, in insertion order
+  std::vector<uint32_t> bucket_;      // per (box, cell) listing: its bucket; box i's from 4 i
+  std::vector<std::vector<uint32_t>> count_;        // per range of boxes: its count, then its next slot, per bucket
+  std::vector<std::vector<uint32_t>> large_chunk_;  // per range of boxes: its large boxes
   std::vector<Entry> entries_;        // by bucket
   std::vector<uint32_t> large_;
   std::vector<uint8_t> is_large_;

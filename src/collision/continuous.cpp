@@ -343,14 +343,38 @@ void Detector::detect_continuous(const world::World& w) {
       prev_ok_[e] = 0;
       continue;
     }
-    check_finite(ents, e);
     order_.push_back(static_cast<uint32_t>(e));
   }
   const size_t m = order_.size();
   c0_.resize(m), c1_.resize(m), r_sphere_.resize(m), r_bound_.resize(m), boxes_.resize(m);
-  chunked(jobs_, m, kEntityGrain, [&](int, size_t i0, size_t i1) {
+
+  // Fixed objects: the world's grid (world/fixed_grid.hpp) lists each by its reach; each is
+  // tested here by its sphere (or its models' bound, when a tier above the sphere may be asked),
+  // centred where it stood when indexed (x, y do not change; craters only re-seat z).
+  if (fixed_indexed_ != w.fixed.size()) {
+    fixed_x_.resize(w.fixed.size()), fixed_y_.resize(w.fixed.size()), fixed_r_.resize(w.fixed.size());
+    for (size_t o = 0; o < w.fixed.size(); ++o) {
+      const Vec3 c = world::fixed_centre(w, o);
+      fixed_x_[o] = static_cast<float>(c.x()), fixed_y_[o] = static_cast<float>(c.y());
+      const world::Kind& k = w.kinds[w.fixed.kind[o]];
+      const Tier top = opt_.tier != Tier::Auto ? opt_.tier : top_tier(k);
+      fixed_r_[o] = static_cast<float>(world::fixed_radius(w, o));
+      if (top != Tier::Sphere) {
+        prepare_shapes(w);
+        for (int mi : k.models) fixed_r_[o] = std::max(fixed_r_[o], static_cast<float>(shapes_[mi].bound_radius * 1.0001 + 1e-3));
+      }
+    }
+    fixed_indexed_ = w.fixed.size();
+  }
+  // One pass over the entities, in ranges on the pool: each entity's sweep and swept box, then
+  // its fixed-object tests into its range's lane (check_finite first: the pool rethrows the
+  // lowest range's error, so the first bad entity in index order is named, as on one thread).
+  if (jobs_) lane(jobs_->threads() - 1);
+  else lane(0);
+  merge_lanes(chunked(jobs_, m, kEntityGrain, [&](int c, size_t i0, size_t i1) {
     for (size_t i = i0; i < i1; ++i) {
       const int e = static_cast<int>(order_[i]);
+      check_finite(ents, e);
       c1_[i] = world::entity_centre(w, e);
       c0_[i] = c1_[i] - ents.vel[e] * dt;
       if (!finite(c0_[i]))
@@ -374,31 +398,8 @@ void Detector::detect_continuous(const world::World& w) {
         r_bound_[i] += static_cast<float>(turn * kPi / 180 * s.sphere_centre.norm());
       }
       boxes_[i] = swept_box(c0_[i], c1_[i], r_bound_[i]);
+      fixed_contacts(w, i, lanes_[c]);
     }
-  });
-
-  // Fixed objects: the world's grid (world/fixed_grid.hpp) lists each by its reach; each is
-  // tested here by its sphere (or its models' bound, when a tier above the sphere may be asked),
-  // centred where it stood when indexed (x, y do not change; craters only re-seat z).
-  if (fixed_indexed_ != w.fixed.size()) {
-    fixed_x_.resize(w.fixed.size()), fixed_y_.resize(w.fixed.size()), fixed_r_.resize(w.fixed.size());
-    for (size_t o = 0; o < w.fixed.size(); ++o) {
-      const Vec3 c = world::fixed_centre(w, o);
-      fixed_x_[o] = static_cast<float>(c.x()), fixed_y_[o] = static_cast<float>(c.y());
-      const world::Kind& k = w.kinds[w.fixed.kind[o]];
-      const Tier top = opt_.tier != Tier::Auto ? opt_.tier : top_tier(k);
-      fixed_r_[o] = static_cast<float>(world::fixed_radius(w, o));
-      if (top != Tier::Sphere) {
-        prepare_shapes(w);
-        for (int mi : k.models) fixed_r_[o] = std::max(fixed_r_[o], static_cast<float>(shapes_[mi].bound_radius * 1.0001 + 1e-3));
-      }
-    }
-    fixed_indexed_ = w.fixed.size();
-  }
-  if (jobs_) lane(jobs_->threads() - 1);
-  else lane(0);
-  merge_lanes(chunked(jobs_, m, kEntityGrain, [&](int c, size_t i0, size_t i1) {
-    for (size_t i = i0; i < i1; ++i) fixed_contacts(w, i, lanes_[c]);
   }));
 
   // Moving pairs: hashed grid on the swept boxes, then the analytic sweep, then the tiers.

@@ -1,4 +1,6 @@
 #include <algorithm>
+#include <array>
+#include <utility>
 #include <cmath>
 
 #include "dynamics/drive.hpp"
@@ -180,14 +182,23 @@ void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::
   const size_t n = ents.size();
   // A player drives its vehicle (drive.hpp); munitions come second, below.
   auto moves = [&](size_t e) { return ents.active[e] && ents.local[e] && !ents.driven[e]; };
-  auto vehicles = [&](int, size_t e0, size_t e1) {
-    for (size_t e = e0; e < e1; ++e)
-      if (moves(e) && w.kinds[ents.kind[e]].mobility != Mobility::Munition) step_vehicle(w, static_cast<int>(e), dt);
+  // Each range also notes the span of its munitions, so that the munitions' pass (on this thread,
+  // in index order) walks that span only, not every entity again.
+  std::array<std::pair<size_t, size_t>, core::Jobs::kMaxThreads> span;
+  span.fill({n, 0});
+  auto vehicles = [&](int c, size_t e0, size_t e1) {
+    for (size_t e = e0; e < e1; ++e) {
+      if (!moves(e)) continue;
+      if (w.kinds[ents.kind[e]].mobility != Mobility::Munition) step_vehicle(w, static_cast<int>(e), dt);
+      else span[c] = {std::min(span[c].first, e), e + 1};
+    }
   };
   constexpr size_t kGrain = 2048;  // vehicles per chunk below which one thread does it all
   if (jobs) jobs->for_chunks(n, kGrain, vehicles);
   else vehicles(0, 0, n);
-  for (size_t e = 0; e < n; ++e)
+  size_t m0 = n, m1 = 0;
+  for (const auto& [lo, hi] : span) m0 = std::min(m0, lo), m1 = std::max(m1, hi);
+  for (size_t e = m0; e < m1; ++e)
     if (moves(e) && w.kinds[ents.kind[e]].mobility == Mobility::Munition) step_munition(w, static_cast<int>(e), dt, impacts);
 }
 

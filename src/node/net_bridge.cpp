@@ -66,7 +66,7 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
   accel_.assign(own_.size(), Vec3::Zero());
   yaw_rate_.assign(own_.size(), 0.f);
   anchors_.assign(own_.size(), DrAnchor{});
-  quiet_.assign(own_.size(), 0);
+  skip_.assign(own_.size(), 0);
   prev_heading_.assign(own_.size(), 0.f);
   removed_.assign(own_.size(), 0);
   for (size_t i = 0; i < own_.size(); ++i) prev_heading_[i] = ents.heading_deg[own_[i]];

@@ -227,7 +227,7 @@ class NetBridge {
   std::vector<Vec3> accel_;     // per own vehicle: filtered local acceleration, m/s^2
   std::vector<float> yaw_rate_;  // per own vehicle: this tick's heading change, rad/s
   std::vector<DrAnchor> anchors_;  // per own vehicle: its last exact DR test (dr_bound.hpp)
-  std::vector<std::uint8_t> quiet_;  // per own vehicle: this tick's Entity State surely not due
+  std::vector<std::uint8_t> skip_;  // per own vehicle: removed, or this tick's Entity State surely not due
   std::uint64_t exact_tests_ = 0;   // vehicles turned into ECEF for the DR test, all ticks
   std::uint64_t es_digest_ = 1469598103934665603ull;  // FNV-1a of every Entity State sent
   std::vector<std::uint32_t> sent_group_;  // per own vehicle: the group of its last Entity State

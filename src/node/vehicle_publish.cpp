@@ -51,21 +51,28 @@ void NetBridge::publish_vehicles() {
       prev_vel_[i] = v;
       yaw_rate_[i] = static_cast<float>(wrap180(w.ents.heading_deg[e] - prev_heading_[i]) * kDeg / dt);
       prev_heading_[i] = w.ents.heading_deg[e];
-      quiet_[i] = opt_.dr_prefilter && !removed_[i] && dr_quiet(anchors_[i], pubs_[i], w, e, t);
+      // Passed over by the serial loop below: removed, or no damage / group change and surely
+      // not due (what it would find for itself; its sends change only vehicle i's own fields).
+      if (removed_[i]) {
+        skip_[i] = 1;
+        continue;
+      }
+      const bool quiet = opt_.dr_prefilter && dr_quiet(anchors_[i], pubs_[i], w, e, t);
+      skip_[i] = quiet && !(pubs_[i].has_sent() && (damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]) !=
+                                                        sent_appearance_[i] ||
+                                                    group_at(w.ents.pos[e]) != sent_group_[i]));
     }
   };
   if (core::Jobs* jobs = sim_.jobs()) jobs->for_chunks(n, 2048, local);
   else local(0, 0, n);
   // Round robin from where the last tick's cap stopped, so no vehicle waits more than a few ticks.
-  for (size_t k = 0; k < n; ++k) {
-    const size_t i = (rr_ + k) % n;
+  for (size_t k = 0, i = n ? rr_ % n : 0; k < n; ++k, i = i + 1 == n ? 0 : i + 1) {
+    if (skip_[i]) continue;  // removed, or the exact test would say None
     const int e = own_[i];
-    if (removed_[i]) continue;  // taken out by a Remove Entity
     const std::uint32_t app = damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]);
     const std::uint32_t group = group_at(w.ents.pos[e]);
     // A damage change, or a move into another cell's group (announced there at once).
     const bool changed = pubs_[i].has_sent() && (app != sent_appearance_[i] || group != sent_group_[i]);
-    if (!changed && quiet_[i]) continue;  // the exact test would say None
     const bool capped = (!pack_ || aoi_) && sent_now >= kMaxDatagramsPerTick;
     if (capped && !changed && first_deferred != n && opt_.dr_prefilter) continue;  // deferred whatever it says
     net::KinematicState s = exact_state(w, e, pubs_[i], t, anchors_[i]);
