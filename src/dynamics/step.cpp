@@ -3,6 +3,7 @@
 #include <utility>
 #include <cmath>
 
+#include "core/atan_float.hpp"
 #include "dynamics/drive.hpp"
 #include "dynamics/dynamics.hpp"
 #include "world/pose.hpp"
@@ -171,10 +172,9 @@ void follow_terrain_along(world::World& w, int e, const Vec2& f) {
   const double br = h(c - f * half_len + r * half_wid), bl = h(c - f * half_len - r * half_wid);
   const double hf = 0.5 * (fr + fl), hb = 0.5 * (br + bl), hr = 0.5 * (fr + br), hl = 0.5 * (fl + bl);
   ents.pos[e].z() = 0.25 * (hf + hb + hr + hl);
-  // Level ground (rise +-0, run >= 1 m): atan2 gives the rise itself; spare the call.
-  auto slope_deg = [](double rise, double run) { return rise == 0 ? rise : rad2deg(std::atan2(rise, run)); };
-  ents.pitch_deg[e] = static_cast<float>(slope_deg(hf - hb, 2 * half_len));
-  ents.roll_deg[e] = static_cast<float>(slope_deg(hl - hr, 2 * half_wid));  // right side down +
+  // float(rad2deg(atan2(rise, run))), the same bits, mostly without libm (core/atan_float.hpp).
+  ents.pitch_deg[e] = atan2_deg_float(hf - hb, 2 * half_len);
+  ents.roll_deg[e] = atan2_deg_float(hl - hr, 2 * half_wid);  // right side down +
 }
 
 void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::Jobs* jobs) {
