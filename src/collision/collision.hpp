@@ -150,6 +150,9 @@ class Detector {
   // One pair of entities by this detector's method and tier, outside the episode bookkeeping
   // (benchmarks and tests): true with the contact (continuous: the first in the tick).
   bool test_pair(const world::World& w, int a, int b, Contact& k);
+  // Whether moving entities a and b were in contact in the last detect (a running episode).
+  // O(pairs in contact).
+  bool touched(int a, int b) const;
 
  private:
   void detect_thesis(const world::World& w);

@@ -69,6 +69,8 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
   skip_.assign(own_.size(), 0);
   prev_heading_.assign(own_.size(), 0.f);
   removed_.assign(own_.size(), 0);
+  announce_left_.assign(own_.size(), 0);
+  announce_at_.assign(own_.size(), 0.0);
   for (size_t i = 0; i < own_.size(); ++i) prev_heading_[i] = ents.heading_deg[own_[i]];
   fixed_net_state_.assign(w.fixed.size(), -1);
   fixed_slot_.assign(w.fixed.size(), -1);
@@ -253,7 +255,11 @@ void NetBridge::on_cultural(const net::EntityStatePdu& p) {
 
 // ---------------------------------------------------------------- decide ----
 
-bool NetBridge::decides(const collision::Contact& c) { return ownership_.decides(sim_.world(), remotes_, c); }
+bool NetBridge::decides(const collision::Contact& c) {
+  // A rejoined entity's episode going on (remote_entities.hpp): nobody's new collision.
+  if (!c.b_fixed && remotes_.resumed_contact(c.a, c.b, now_s_)) return false;
+  return ownership_.decides(sim_.world(), remotes_, c);
+}
 
 // ---------------------------------------------------------------- send ------
 

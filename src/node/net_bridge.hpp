@@ -35,7 +35,9 @@
 //    body z), timestamp = the scenario time of the state (after the tick's step), the kind's
 //    DIS type, marking = scenario id, damage in appearance bits 3-4 (dis_mapping.hpp), DR
 //    algorithm RVW, sent when the DrPublisher says so (1 m /
-//    3 deg / 5 s heartbeat) or when the appearance changes. Entity id = (site,
+//    3 deg / 5 s heartbeat) or when the appearance changes (the first one and a damage change
+//    are repeated twice, 0.5 s apart: a lost datagram would hide them until the heartbeat).
+//    Entity id = (site,
 //    application + k * 4096, e % 32767 + 1) for entity index e, k = e / 32767 (ownership.hpp:
 //    a node may own more than the 32,767 numbers of one application; receivers bind an entity
 //    by its full id; every node loads the same scenario, so indices agree). One PDU a datagram (Wireshark 4.0
@@ -234,6 +236,8 @@ class NetBridge {
   std::unique_ptr<AreaOfInterest> aoi_;
   std::vector<float> prev_heading_;
   std::vector<std::uint8_t> removed_;  // per local vehicle: taken out by a Remove Entity
+  std::vector<std::uint8_t> announce_left_;  // per own vehicle: quick repeats still to send
+  std::vector<double> announce_at_;          // per own vehicle: scenario time of the next one
   // Simulation management: pending freeze / resume (UNIX s, -1 none), scenario time to resume at.
   double freeze_at_ = -1, resume_at_ = -1, resume_sim_t_ = -1, frozen_hb_s_ = 0;
   bool frozen_ = false;

@@ -1,5 +1,9 @@
 #include "node/remote_entities.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include <cmath>
 #include <cstdio>
 
@@ -74,6 +78,7 @@ void RemoteEntities::on_update(const net::EntityStateUpdatePdu& p, double now_s,
 }
 
 void RemoteEntities::mirror(double now_s, bool poses) {
+  now_s_ = now_s;
   grow();
   for (const auto& n : noted_) settle(n);
   noted_.clear();
@@ -186,6 +191,10 @@ void RemoteEntities::joined(const net::EntityId& id, const Known& r) {
   const std::string marking = net::marking_text(r.marking);
   int e = index_of(id);
   int kind = e >= 0 ? kind_for(e, r.type) : -1;
+  const bool rejoin = e >= 0;  // this id was here before (timed out or deactivated): the same entity
+  if (rejoin)
+    for (auto& s : resumes_)
+      if (s.entity == e) s.until_s = now_s_ + kResumeS;
   if (e < 0) {
     // A scenario vehicle of another node with this marking, not yet bound to an entity id.
     for (size_t i = 0; i < ents.size(); ++i)
@@ -238,7 +247,18 @@ void RemoteEntities::joined(const net::EntityId& id, const Known& r) {
   ev["marking"] = marking;
   ev["kind"] = known_type ? w.kinds[kind].name : type_text(r.type);
   if (!known_type) ev["model"] = w.kinds[kind].name;
+  if (rejoin) ev["rejoin"] = true;
   log_.write(ev);
+}
+
+bool RemoteEntities::resumed_contact(int a, int b, double now_s) {
+  bool hit = false;
+  std::erase_if(resumes_, [&](const Resume& s) {
+    const bool pair = (s.entity == a && s.partner == b) || (s.entity == b && s.partner == a);
+    if (pair && !hit && now_s <= s.until_s && std::isfinite(s.until_s)) return hit = true;
+    return now_s > s.until_s;  // rejoined more than kResumeS ago: a later contact is new
+  });
+  return hit;
 }
 
 void RemoteEntities::expire(double now_s) {
@@ -250,6 +270,10 @@ void RemoteEntities::expire(double now_s) {
       if (*tracked_as(r.type)) log_.write(tracked_event("entity_timeout", r.id, r.type, r.marking));
       return;
     }
+    // The episodes it is in go on if it comes back (a lost heartbeat or two, not a departure).
+    for (int q = 0; q < static_cast<int>(w.ents.size()); ++q)
+      if (q != e && w.ents.active[q] && resumes_.size() < kMaxResumes && sim_.detector().touched(e, q))
+        resumes_.push_back({e, q, std::numeric_limits<double>::infinity()});
     deactivate(e);
     auto ev = event("entity_timeout");
     ev["id"] = w.ents.id[e];

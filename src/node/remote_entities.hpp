@@ -25,6 +25,13 @@
 //    bits changing are a `damage` event too: object, entity, kind (DIS type), tracked_as,
 //    from_state / to_state = none | slight | moderate | destroyed, "remote": true.
 // Ids: world entities keep their remote id across timeouts, so a rejoin reuses the entity.
+// Timeout then rejoin (issue 11): a parked or straight-driving entity sends only the 5 s
+// heartbeat, so two lost heartbeats time it out (DIS: 2.4 heartbeats) though it never left. The
+// same id coming back is the same entity: its entity_joined event says "rejoin": true (the world
+// entity is reused, nothing spawns), and the contact episodes it was in when it timed out go on:
+// a contact with one of those partners within kResumeS of the rejoin is not a new collision
+// (resumed_contact; the bridge decides none, so no event, no outcome, no Collision PDU), and the
+// detector carries the episode on from there while the pair still touches.
 // Threading: the tick's thread only (as the Simulation it writes to).
 #pragma once
 #include <cstdint>
@@ -68,6 +75,11 @@ class RemoteEntities {
   // damage intact (appearance damage 0) force 1". The marking is JSON-quoted (decoded, made safe).
   // A tracked-only entity shows what it is tracked as ("(lifeform)") and its damage bits' name.
   std::string listing(double now_s, std::size_t max_lines = 100) const;
+  // Whether the contact of world entities a and b, now_s, is the episode a rejoined entity was in
+  // when it timed out (see above); true once per remembered pair.
+  bool resumed_contact(int a, int b, double now_s);
+  static constexpr double kResumeS = 1.0;  // after the rejoin, s
+  static constexpr std::size_t kMaxResumes = 4096;
 
  private:
   // What the table knew of an entity before a PDU was applied (heard = false: nothing).
@@ -121,6 +133,13 @@ class RemoteEntities {
   world::Changes inject_;                 // reused
   world::Changes mirrors_;                // reused; only .mirrors
   std::vector<Noted> noted_;              // since the last mirror()
+  // A remote entity that timed out in contact with `partner`: until_s is +inf until it rejoins.
+  struct Resume {
+    int entity, partner;
+    double until_s;
+  };
+  std::vector<Resume> resumes_;
+  double now_s_ = 0;  // of the last mirror()
 };
 
 }  // namespace npsnet::node

@@ -22,6 +22,12 @@ constexpr size_t kMaxDatagramsPerTick = 128;
 // (m/s) below which a vehicle is at rest and sends none.
 constexpr double kAccelTauS = 0.5;
 constexpr double kAtRestMps = 0.05;
+// A new entity's first Entity State, and one whose damage changed, is sent again kAnnounceRepeats
+// times kAnnounceGapS apart (besides DR updates and heartbeats): one lost datagram no longer hides
+// a parked vehicle, or its new damage, for a whole 5 s heartbeat (issue 11). Ours, within DIS:
+// a simulation may always send an Entity State before its heartbeat is due.
+constexpr int kAnnounceRepeats = 2;
+constexpr double kAnnounceGapS = 0.5;
 
 double wrap180(double d) {
   d = std::fmod(d + 180.0, 360.0);
@@ -58,7 +64,8 @@ void NetBridge::publish_vehicles() {
         continue;
       }
       const bool quiet = opt_.dr_prefilter && dr_quiet(anchors_[i], pubs_[i], w, e, t);
-      skip_[i] = quiet && !(pubs_[i].has_sent() && (damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]) !=
+      const bool repeat = announce_left_[i] > 0 && t >= announce_at_[i] - 1e-9;  // kAnnounceRepeats
+      skip_[i] = quiet && !repeat && !(pubs_[i].has_sent() && (damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]) !=
                                                         sent_appearance_[i] ||
                                                     group_at(w.ents.pos[e]) != sent_group_[i]));
     }
@@ -73,13 +80,15 @@ void NetBridge::publish_vehicles() {
     const std::uint32_t group = group_at(w.ents.pos[e]);
     // A damage change, or a move into another cell's group (announced there at once).
     const bool changed = pubs_[i].has_sent() && (app != sent_appearance_[i] || group != sent_group_[i]);
+    // A quick repeat of a first Entity State or of a damage change (kAnnounceRepeats).
+    const bool repeat = announce_left_[i] > 0 && t >= announce_at_[i] - 1e-9;
     const bool capped = (!pack_ || aoi_) && sent_now >= kMaxDatagramsPerTick;
     if (capped && !changed && first_deferred != n && opt_.dr_prefilter) continue;  // deferred whatever it says
     net::KinematicState s = exact_state(w, e, pubs_[i], t, anchors_[i]);
     ++exact_tests_;
     s.acceleration = anchors_[i].jac * accel_[i];
     s.angular_velocity = Eigen::Vector3d(0, 0, yaw_rate_[i]);
-    if (!changed && pubs_[i].needs_update(s, t) == net::DrPublisher::Reason::None) continue;
+    if (!changed && !repeat && pubs_[i].needs_update(s, t) == net::DrPublisher::Reason::None) continue;
     if (capped && !changed) {  // a damage change never waits
       if (first_deferred == n) first_deferred = i;
       continue;
@@ -97,6 +106,9 @@ void NetBridge::publish_vehicles() {
     } else if (!session_->send_to(group, es_)) {
       continue;
     }
+    if (!pubs_[i].has_sent() || changed) announce_left_[i] = kAnnounceRepeats;  // new or changed: repeat it soon
+    else if (repeat) --announce_left_[i];
+    announce_at_[i] = t + kAnnounceGapS;
     pubs_[i].mark_sent(s, t);
     dr_rebase(s, pubs_[i], t, anchors_[i]);
     digest_entity_state();
