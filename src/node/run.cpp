@@ -37,6 +37,10 @@ void print_problems(const world::InputError& e) {
 double wall_now() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
+// A paced node started this long (s) or more after --start-at joins the running exercise (its past
+// caught up headless); one started less late (a slow process start) starts at t = 0 then, as
+// before issue 11 (its clock that much behind the exercise's).
+constexpr double kJoinAfterS = 2.0;
 // The whole ticks of dt since the exercise started at start_at (UNIX s): where a late node joins.
 long join_ticks(double start_at, double dt) {
   const double n = std::floor((wall_now() - start_at) / dt + 1e-9);
@@ -153,9 +157,10 @@ int run_command(const RunOptions& opt) {
                               : static_cast<long>(std::ceil((o.seconds ? *o.seconds : sc.duration_s) / o.dt - 1e-9));
   if (o.events.empty()) o.events = o.snapshots / "events.jsonl";
   const bool paced = o.realtime || o.window || net_on;  // --net: scenario time = wall time
-  // Joining a running exercise: a paced run (not --replay) whose --start-at has passed starts
-  // its clock at now - start (whole ticks; the ticks before are caught up headless, see below).
-  const bool joining = o.start_at && paced && !replay_on && wall_now() - *o.start_at >= o.dt;
+  // Joining a running exercise: a paced run (not --replay) whose --start-at has passed by
+  // kJoinAfterS or more starts its clock at now - start (whole ticks; the ticks before are caught
+  // up headless, see below).
+  const bool joining = o.start_at && paced && !replay_on && wall_now() - *o.start_at >= kJoinAfterS;
   if (joining && join_ticks(*o.start_at, o.dt) >= ticks) {
     std::fprintf(stderr, "--start-at %.15g: the exercise started %.6g s ago, past this run's end (%.6g s of scenario "
                  "time): nothing left to join\n", *o.start_at, wall_now() - *o.start_at, ticks * o.dt);
@@ -311,7 +316,8 @@ int run_command(const RunOptions& opt) {
     if (!o.quiet)
       std::fprintf(stderr, "npsnet: joined the exercise at t = %.2f s (%ld ticks caught up headless)\n", sim.world().t, first);
   }
-  // The scenario clock: tick i ends at t0 + (i + 1) dt (joining: t0 is the exercise's start).
+  // The scenario clock: tick i ends at t0 + (i + 1) dt (joining: t0 is the exercise's start, so the
+  // ticks due since the headless catch-up began are caught up live, as any late tick).
   auto t0 = std::chrono::steady_clock::now();
   if (first > 0)
     t0 -= std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(wall_now() - *o.start_at));
