@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "world/error.hpp"
+#include "world/text_file.hpp"
 
 namespace npsnet::input {
 
@@ -54,7 +55,7 @@ std::optional<std::pair<std::string, std::string>> parse_line(const std::string&
 std::vector<Action> read_actions(const std::filesystem::path& file) {
   const std::string name = file.string();
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw world::InputError(name, 0, "file", std::filesystem::exists(file) ? "cannot be read" : "file not found");
+  if (!in) throw world::InputError(name, 0, "file", world::file_exists(file) ? "cannot be read" : "file not found");
   std::ostringstream text;
   text << in.rdbuf();
   return read_actions_text(text.str(), file);

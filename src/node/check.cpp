@@ -9,6 +9,7 @@
 #include "node/options.hpp"
 #include "node/world_summary.hpp"
 #include "world/scenario.hpp"
+#include "world/text_file.hpp"
 
 namespace npsnet::node {
 
@@ -22,7 +23,7 @@ std::string lower_ext(const std::filesystem::path& p) {
 
 void check_one(const std::filesystem::path& f, std::vector<world::Problem>& problems, std::string& notes) {
   const std::string fname = f.string();
-  if (!std::filesystem::exists(f)) {
+  if (!world::file_exists(f)) {
     problems.push_back({fname, 0, "file", "file not found"});
     return;
   }

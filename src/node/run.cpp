@@ -167,8 +167,12 @@ int run_command(const RunOptions& opt) {
     return 2;
   }
   const bool has_player = o.window || !o.drive.empty() || !o.input.empty() || !o.record_input.empty();
-  if (!o.input.empty() && !o.record_input.empty() &&
-      std::filesystem::weakly_canonical(o.record_input) == std::filesystem::weakly_canonical(o.input)) {
+  const auto same_file = [](const std::filesystem::path& a, const std::filesystem::path& b) {
+    std::error_code ea, eb;  // never throws: a name the system cannot resolve is compared as written
+    const auto ca = std::filesystem::weakly_canonical(a, ea), cb = std::filesystem::weakly_canonical(b, eb);
+    return !ea && !eb ? ca == cb : a.lexically_normal() == b.lexically_normal();
+  };
+  if (!o.input.empty() && !o.record_input.empty() && same_file(o.record_input, o.input)) {
     std::fprintf(stderr, "--record-input %s: would overwrite the --input file\n", o.record_input.string().c_str());
     return 2;
   }

@@ -81,7 +81,7 @@ void read_handling(TomlReader& r, const toml::table& t, const std::string& p, in
 }  // namespace
 
 KindTable KindTable::load(const std::filesystem::path& file, ModelLibrary& models) {
-  if (!std::filesystem::exists(file)) throw InputError(file.string(), 0, "file", "file not found");
+  if (!file_exists(file)) throw InputError(file.string(), 0, "file", "file not found");
   return load_text(read_text_file(file, "file"), file, models);
 }
 

@@ -74,7 +74,7 @@ void check_vertex_lines(std::string_view text, const std::string& fname) {
 
 Model load_obj(const std::filesystem::path& file) {
   const std::string fname = file.string();
-  if (!std::filesystem::exists(file)) throw InputError(fname, 0, "model", "file not found");
+  if (!file_exists(file)) throw InputError(fname, 0, "model", "file not found");
   return load_obj_text(read_text_file(file, "model"), file);
 }
 
@@ -138,7 +138,9 @@ Model load_obj_text(std::string_view text, const std::filesystem::path& file) {
 }
 
 int ModelLibrary::load(const std::filesystem::path& file) {
-  const std::string key = std::filesystem::weakly_canonical(file).string();
+  std::error_code ec;  // a name the system cannot resolve: load_obj says "file not found"
+  const std::filesystem::path canon = std::filesystem::weakly_canonical(file, ec);
+  const std::string key = ec ? file.lexically_normal().string() : canon.string();
   for (size_t i = 0; i < paths_.size(); ++i)
     if (paths_[i] == key) return static_cast<int>(i);
   models_.push_back(load_obj(file));

@@ -32,7 +32,7 @@ void check_id(TomlReader& r, const toml::node* n, const std::string& field, cons
 
 Scenario load_scenario(const std::filesystem::path& file) {
   const std::string fname = file.string();
-  if (!std::filesystem::exists(file)) throw InputError(fname, 0, "file", "file not found");
+  if (!file_exists(file)) throw InputError(fname, 0, "file", "file not found");
   return load_scenario_text(read_text_file(file, "file"), file);
 }
 
@@ -71,15 +71,15 @@ Scenario load_scenario_text(std::string_view text, const std::filesystem::path& 
     r.unknown_keys(*w, "world.", {"terrain", "objects", "kinds", "origin_geodetic", "water_level_m"});
     if (auto t = r.string(*w, "terrain", "world.terrain", true, wl)) {
       s.terrain = dir / *t;
-      if (!std::filesystem::exists(s.terrain)) r.problem(w->get("terrain"), "world.terrain", "file not found: " + s.terrain.string());
+      if (!file_exists(s.terrain)) r.problem(w->get("terrain"), "world.terrain", "file not found: " + s.terrain.string());
     }
     if (auto o = r.string(*w, "objects", "world.objects", false, wl)) {
       s.objects = dir / *o;
-      if (!std::filesystem::exists(s.objects)) r.problem(w->get("objects"), "world.objects", "file not found: " + s.objects.string());
+      if (!file_exists(s.objects)) r.problem(w->get("objects"), "world.objects", "file not found: " + s.objects.string());
     }
     if (auto k = r.string(*w, "kinds", "world.kinds", false, wl)) {
       s.kinds = dir / *k;
-      if (!std::filesystem::exists(s.kinds)) r.problem(w->get("kinds"), "world.kinds", "file not found: " + s.kinds.string());
+      if (!file_exists(s.kinds)) r.problem(w->get("kinds"), "world.kinds", "file not found: " + s.kinds.string());
     } else {
       s.kinds = default_kinds_file();
     }

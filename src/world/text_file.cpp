@@ -4,6 +4,7 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 
 #include "world/error.hpp"
 
@@ -16,6 +17,11 @@ std::string read_text_file(const std::filesystem::path& file, const std::string&
   ss << in.rdbuf();
   if (in.bad()) throw InputError(file.string(), 0, field, "cannot read file");
   return std::move(ss).str();
+}
+
+bool file_exists(const std::filesystem::path& file) noexcept {
+  std::error_code ec;
+  return std::filesystem::exists(file, ec) && !ec;
 }
 
 }  // namespace npsnet::world

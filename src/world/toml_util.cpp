@@ -9,7 +9,7 @@
 namespace npsnet::world {
 
 toml::table parse_toml_file(const std::string& file) {
-  if (!std::filesystem::exists(file)) throw InputError(file, 0, "file", "file not found");
+  if (!file_exists(file)) throw InputError(file, 0, "file", "file not found");
   return parse_toml_text(read_text_file(file, "file"), file);
 }
 

@@ -151,3 +151,23 @@ TEST(BadInput, ObjVertexThatIsNotAFiniteNumberIsRejectedWithItsLine) {
   EXPECT_NE(test::npsnet_cli("check " + big.string()).text.find(":2: v: coordinate must be -10000 to 10000 m (got 1e+30)"),
             std::string::npos);
 }
+
+// A path the system cannot even look up (a 5,000-character name) is "file not found", exit 2:
+// std::filesystem threw filesystem_error there ("internal error"; the kinds fuzz target found it,
+// fuzz/regressions/kinds/name-too-long-983f90bd).
+TEST(BadInput, PathTooLongToLookUpIsFileNotFound) {
+  const std::string longname = std::string(5000, 'x') + ".tif";
+  const auto sc = test::write_file("too-long-terrain.toml", "[world]\nterrain = \"" + longname +
+                                                                "\"\norigin_geodetic = [35.98, -121.25, 0.0]\n");
+  for (const std::string cmd : {"check ", "run --no-render --quiet --scenario "}) {
+    const auto o = test::npsnet_cli(cmd + sc.string());
+    EXPECT_EQ(o.rc, 2) << cmd << o.text.substr(0, 400);
+    EXPECT_NE(o.text.find("file not found"), std::string::npos) << o.text.substr(0, 400);
+    EXPECT_EQ(o.text.find("internal error"), std::string::npos) << o.text.substr(0, 400);
+  }
+  const auto kinds = test::write_file("too-long-model.toml", "[x]\nmodels = [\"" + std::string(5000, 'm') +
+                                                                 ".obj\"]\n");
+  const auto o = test::npsnet_cli("check " + kinds.string());
+  EXPECT_EQ(o.rc, 2) << o.text.substr(0, 400);
+  EXPECT_EQ(o.text.find("internal error"), std::string::npos) << o.text.substr(0, 400);
+}

@@ -33,7 +33,7 @@ TEST(BlastAfterState, ATreeStateReceivedBeforeOrAfterTheBlastIsNotDamagedTwice) 
       for (auto& d : later) wire.node(2).inbox.push_back(std::move(d));
       later.clear();
     }
-    if (state_first) ASSERT_GT(held, 0);
+    if (state_first) { ASSERT_GT(held, 0); }
     auto& n1 = wire.node(1);
     auto& n2 = wire.node(2);
     int tr1 = -1;
