@@ -150,9 +150,17 @@ class Detector {
   // One pair of entities by this detector's method and tier, outside the episode bookkeeping
   // (benchmarks and tests): true with the contact (continuous: the first in the tick).
   bool test_pair(const world::World& w, int a, int b, Contact& k);
-  // Whether moving entities a and b were in contact in the last detect (a running episode).
-  // O(pairs in contact).
-  bool touched(int a, int b) const;
+  // Calls f(q) for each moving entity q that was in contact with moving entity e in the last
+  // detect (a running episode). O(pairs in contact), whatever the number of entities.
+  template <class F>
+  void each_partner(int e, F&& f) const {
+    for (uint64_t key : previous_) {
+      if (key >> 63) continue;  // a fixed object
+      const int lo = static_cast<int>((key >> 31) & 0xffffffffu), hi = static_cast<int>(key & 0x7fffffffu);
+      if (lo == e) f(hi);
+      else if (hi == e) f(lo);
+    }
+  }
 
  private:
   void detect_thesis(const world::World& w);

@@ -42,10 +42,6 @@ void Detector::detect(const world::World& w, std::vector<Contact>& out) {
 
 uint64_t contact_key(int a, int b, bool fixed) { return pair_key(a, b, fixed); }
 
-bool Detector::touched(int a, int b) const {
-  return std::find(previous_.begin(), previous_.end(), pair_key(a, b, false)) != previous_.end();
-}
-
 void Detector::detect_thesis(const world::World& w) {
   const auto& ents = w.ents;
   const int n = static_cast<int>(ents.size());

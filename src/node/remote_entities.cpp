@@ -271,9 +271,10 @@ void RemoteEntities::expire(double now_s) {
       return;
     }
     // The episodes it is in go on if it comes back (a lost heartbeat or two, not a departure).
-    for (int q = 0; q < static_cast<int>(w.ents.size()); ++q)
-      if (q != e && w.ents.active[q] && resumes_.size() < kMaxResumes && sim_.detector().touched(e, q))
+    sim_.detector().each_partner(e, [&](int q) {
+      if (q != e && w.ents.active[q] && resumes_.size() < kMaxResumes)
         resumes_.push_back({e, q, std::numeric_limits<double>::infinity()});
+    });
     deactivate(e);
     auto ev = event("entity_timeout");
     ev["id"] = w.ents.id[e];
