@@ -6,6 +6,7 @@
 
 #include "node/capture_commands.hpp"
 #include "node/cli.hpp"
+#include "node/dr_error.hpp"
 #include "node/options.hpp"
 #include "world/scenario.hpp"
 
@@ -32,6 +33,9 @@ Exit codes: 0 ok, 2 bad input (nothing written), 1 failure while running.)");
   run->add_option("--events", o.events, "event log, JSON Lines (default <snapshots>/events.jsonl)");
   run->add_option("--state-out", o.state_out, "at the end, write the world (vehicles, changed objects, craters) as JSON");
   run->add_option("--state-at", o.state_at, "write --state-out at this scenario time (s) instead of at the end")->check(finite_in(0, 1e7, "s"));
+  run->add_option("--track-every", o.track_every,
+                  "log every vehicle's position every S scenario seconds (track events; npsnet dr-error)")
+      ->check(finite_in(0, npsnet::world::kMaxDurationS, "s", true));
   run->add_option("--snapshots", o.snapshots, "folder for snapshot PNGs (default screenshots/)");
   run->add_flag("--window", o.window, "show a GLFW window (needs a display)");
   run->add_flag("--realtime", o.realtime, "pace ticks to the wall clock");
@@ -82,6 +86,8 @@ Exit codes: 0 ok, 2 bad input (nothing written), 1 failure while running.)");
   npsnet check exercise.pcap                     a recording: PDUs by type, malformed PDUs with their frame)");
   npsnet::node::CaptureOptions capture;
   npsnet::node::add_capture_commands(app, capture);  // record, replay
+  npsnet::node::DrErrorOptions dr_error;
+  npsnet::node::add_dr_error_command(app, dr_error);
   if (npsnet::node::misplaced_first_argument(app, argc, argv)) return 2;
   try {
     app.parse(argc, argv);
@@ -103,6 +109,7 @@ Exit codes: 0 ok, 2 bad input (nothing written), 1 failure while running.)");
   try {
     if (*run) return npsnet::node::run_command(o);
     if (auto rc = npsnet::node::run_capture_command(capture)) return *rc;
+    if (auto rc = npsnet::node::run_dr_error_command(dr_error)) return *rc;
     return npsnet::node::check_command(files);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "npsnet: internal error: %s\n", e.what());

@@ -15,6 +15,7 @@
 #endif
 #include "node/simulation.hpp"
 #include "node/state_dump.hpp"
+#include "node/track_log.hpp"
 // --- network ---
 #ifdef NPSNET_HAVE_NET
 #include "node/net_bridge.hpp"
@@ -278,6 +279,8 @@ int run_command(const RunOptions& opt) {
   // --- network end ---
   if (o.start_at && !replay_on)  // with --replay, --start-at is the recording's t = 0: no wait
     while (wall_now() < *o.start_at) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  std::unique_ptr<TrackLog> track;  // --track-every
+  if (o.track_every) track = std::make_unique<TrackLog>(*o.track_every, o.dt);
   bool state_written = o.state_out.empty();  // --state-out: written once, at --state-at or the end
   const auto write_state_due = [&] {
     if (!state_written && o.state_at && sim.world().t >= *o.state_at - 1e-9) {
@@ -361,6 +364,7 @@ int run_command(const RunOptions& opt) {
 #else
       sim.tick();
 #endif
+      if (track) track->after_tick(sim.world(), log);
       write_state_due();
       if (player && player->quit()) end_now("quit", i);  // Esc, or a quit action
       if (paced && !ended_by) std::this_thread::sleep_until(deadline);

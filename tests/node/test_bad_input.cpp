@@ -35,7 +35,7 @@ std::vector<nlohmann::json> json_lines(const fs::path& file) {
 TEST(BadInput, NonFiniteNumbersAreRejectedPlainlyAndNothingIsWritten) {
   const auto dir = fresh_dir("bad-numbers");
   const auto events = dir / "e.jsonl";
-  for (const std::string flag : {"--seconds", "--dt", "--snapshot-every", "--start-at"})
+  for (const std::string flag : {"--seconds", "--dt", "--snapshot-every", "--start-at", "--track-every"})
     for (const std::string v : {"nan", "NaN", "inf", "-inf", "1e999", "abc", "-nan"}) {
       SCOPED_TRACE(flag + " " + v);
       const auto o = test::npsnet_cli("run " + flag + " " + v + " --no-render --quiet --events " + events.string() +
