@@ -2,18 +2,34 @@
 #include "collision/id_rank.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 namespace npsnet::collision {
 
+uint64_t id_prefix_key(const std::string& s) {
+  unsigned char b[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  std::memcpy(b, s.data(), s.size() < 8 ? s.size() : 8);
+  uint64_t k = 0;
+  for (unsigned char c : b) k = k << 8 | c;  // big-endian: the first byte decides first
+  return k;
+}
+
 void IdRank::update(const std::vector<std::string>& ids) {
   const size_t n = ids.size();
-  auto less = [&](uint32_t x, uint32_t y) { return ids[x] != ids[y] ? ids[x] < ids[y] : x < y; };
+  // The prefix keys decide most comparisons (id_rank.hpp); equal keys fall back to the strings.
+  auto less = [&](uint32_t x, uint32_t y) {
+    if (key_[x] != key_[y]) return key_[x] < key_[y];
+    const int c = ids[x].compare(ids[y]);
+    return c != 0 ? c < 0 : x < y;
+  };
   if (seen_.size() > n) seen_.clear(), by_.clear();  // the table shrank: rank from scratch
   fresh_.clear();
   dirty_.assign(n, 0);
   for (size_t i = 0; i < n; ++i)
     if (i >= seen_.size() || ids[i] != seen_[i]) fresh_.push_back(static_cast<uint32_t>(i)), dirty_[i] = 1;
   if (fresh_.empty() && rank_.size() == n) return;
+  key_.resize(n);
+  for (uint32_t i : fresh_) key_[i] = id_prefix_key(ids[i]);
   kept_.clear();
   for (uint32_t i : by_)
     if (!dirty_[i]) kept_.push_back(i);
