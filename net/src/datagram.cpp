@@ -94,9 +94,10 @@ DatagramParser::Step DatagramParser::step(std::span<const std::uint8_t> rest, Co
     return s;
   }
   if (filter_.ignore_own && origin.site == filter_.site && filter_.own_application(origin.application)) {
-    // A Detonation of one of our rounds that we did not send is another node repeating it (a
-    // node that adopted the rounds of our earlier process, killed and restarted): delivered.
-    if (filter_.echo || s.type != PduType::Detonation) {
+    // A Detonation of one of our rounds or a Collision PDU one of our vehicles issued that we did
+    // not send is another node repeating it (a node that adopted the PDUs of our earlier process,
+    // killed and restarted): delivered.
+    if (filter_.echo || (s.type != PduType::Detonation && s.type != PduType::Collision)) {
       ++(filter_.echo ? c.own_echo_ignored : c.own_id_clash);
       return s;
     }

@@ -186,25 +186,32 @@ TEST(Datagram, ExerciseFilterAndOwnEcho) {
 }
 
 // Issue 11: a datagram we did not send (not our echo) with our (site, application): another
-// simulator using our identity (own_id_clash, ignored), except a Detonation of one of our rounds,
-// which is another node repeating it after our process restarted (adoption): delivered.
-TEST(Datagram, NotOurEchoIsAClashExceptARepeatedDetonationOfOurRound) {
-  const auto d = concat({bytes_of(sample_entity_state(0)), bytes_of(sample_fire()), bytes_of(sample_detonation(1))});
+// simulator using our identity (own_id_clash, ignored), except a Detonation of one of our rounds
+// or a Collision PDU one of our vehicles issued, which is another node repeating it after our
+// process restarted (adoption): delivered.
+TEST(Datagram, NotOurEchoIsAClashExceptARepeatedDetonationOrCollisionOfOurs) {
+  const auto d = concat({bytes_of(sample_entity_state(0)), bytes_of(sample_fire()), bytes_of(sample_detonation(1)),
+                         bytes_of(sample_collision())});
   net::DatagramParser parser(net::ReceiveFilter{true, 9, true, 11, 22});  // 11:22 ours
   for (const bool echo : {true, false}) {
     SCOPED_TRACE(echo ? "our echo" : "not our echo");
     parser.set_echo(echo);
     net::Counters c;
-    int detonations = 0, others = 0;
+    int detonations = 0, collisions = 0, others = 0;
     parser.parse(d, c,
                  net::Overloaded{[&](const net::DetonationPdu& p) {
                                    EXPECT_EQ(p.firing_entity_id, (net::EntityId{11, 22, 33}));
                                    ++detonations;
                                  },
+                                 [&](const net::CollisionPdu& p) {
+                                   EXPECT_EQ(p.issuing_entity_id, (net::EntityId{11, 22, 33}));
+                                   ++collisions;
+                                 },
                                  [&](const net::EntityStatePdu&) { ++others; }, [&](const net::FirePdu&) { ++others; }});
     EXPECT_EQ(others, 0);
     EXPECT_EQ(detonations, echo ? 0 : 1);
-    EXPECT_EQ(echo ? c.own_echo_ignored : c.own_id_clash, echo ? 3u : 2u);
+    EXPECT_EQ(collisions, echo ? 0 : 1);
+    EXPECT_EQ(echo ? c.own_echo_ignored : c.own_id_clash, echo ? 4u : 2u);
   }
 }
 

@@ -26,26 +26,41 @@ Vec3 vv(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 void NetBridge::on_collision(const net::CollisionPdu& p, double arrival_s) {
   world::World& w = sim_.world();
   auto& ents = w.ents;
+  // Issued by one of our vehicles and not our datagram: our earlier process's collision, which
+  // another node adopted and repeats (we were killed and restarted).
+  const bool own_issuer = ours(p.issuing_entity_id);
+  const net::EntityId& mine_id = own_issuer ? p.issuing_entity_id : p.colliding_entity_id;
+  const net::EntityId& other_id = own_issuer ? p.colliding_entity_id : p.issuing_entity_id;
   // The colliding entity is ours (we apply the outcome to it), or a third node's copy (we only
   // record the collision and the damage of both copies, as their owners do).
   int own = -1;
   bool third = false;
-  if (ours(p.colliding_entity_id)) {
-    own = own_entity_of(p.colliding_entity_id);
+  if (ours(mine_id)) {
+    own = own_entity_of(mine_id);
     if (own < 0) return;
   } else {
-    own = remotes_.index_of(p.colliding_entity_id);
+    own = remotes_.index_of(mine_id);
     if (own < 0 || !ents.active[own]) return;
     third = true;
   }
-  const int other = remotes_.index_of(p.issuing_entity_id);
-  if (other < 0 || !ents.active[other]) return;
-  const net::RemoteEntity* issuer = remotes_.find(p.issuing_entity_id);
-  if (!issuer) return;
+  int other = remotes_.index_of(other_id);
+  if (other >= 0 && !ents.active[other]) other = -1;
+  const net::RemoteEntity* issuer = own_issuer ? nullptr : remotes_.find(p.issuing_entity_id);
+  // A collision of our vehicle from before this process joined (past_collision) waits for the
+  // other entity's Entity State, as any, but only for one DIS timeout after the join: then it is
+  // applied without it (its node is dead too; a third node adopted the PDU).
+  // (An NPSNET node's PDU: it states the outcome in octet 31.)
+  const bool past = !third && (own_issuer || (p.padding != kOutcomeUnstated && dated_before_join(p.header.timestamp)));
+  if (past && other < 0 && w.t - std::max(0.0, joined_t_) < remotes_.thresholds().timeout_s) return;
+  if (!past && (other < 0 || !issuer)) return;
   // Applied once, whoever repeats it; until both entities are known here a repeat can still come.
-  // A collision issued by a scenario vehicle of another NPSNET node is kept for adoption.
-  const bool adoptable = ents.node[other] >= 1;
+  // A collision issued by a scenario vehicle of another NPSNET node (or of ours) is kept for adoption.
+  const bool adoptable = own_issuer || (other >= 0 ? ents.node[other] >= 1 : p.padding != kOutcomeUnstated);
   if (!collisions_.received(p, arrival_s, adoptable, group_at(ents.pos[own]))) return;
+  if (past) {
+    past_collision(own, other, outcome_of(p, issuer ? issuer->appearance : 0));
+    return;
+  }
   const world::Result res = outcome_of(p, issuer->appearance);  // the PDU's own (collision_outcome.hpp)
   const auto& frame = w.terrain.frame();
   const Vec3 other_pos = ents.pos[other];
@@ -99,6 +114,36 @@ void NetBridge::on_collision(const net::CollisionPdu& p, double arrival_s) {
   }
   inject_.entities.push_back(mine);
   sim_.inject(inject_);
+  inject_.clear();
+}
+
+void NetBridge::past_collision(int own, int other, world::Result res) {
+  const world::World& w = sim_.world();
+  const auto& ents = w.ents;
+  inject_.clear();
+  if (other >= 0) {  // both here: the collision is recorded (logged), as the other nodes did
+    world::CollisionRecord rec;
+    rec.a = std::min(own, other);
+    rec.b = std::max(own, other);
+    rec.point = ents.pos[other];  // where the other stands (a kill or a stop left it there)
+    rec.method = "network_past";  // closing speed and angle of then are not known: 0
+    rec.tier = "network";
+    rec.result_a = rec.result_b = res;
+    inject_.collisions.push_back(rec);
+  }
+  // The lasting part of the outcome, on our vehicle where the catch-up left it: a kill destroys
+  // and stops it, a stop stops it; a bounce of then changes nothing now. Damage only goes forward
+  // (world::apply): the most damaged state wins over the catch-up's intact vehicle.
+  if (res == world::Result::Kill || res == world::Result::Stop) {
+    world::EntityChange mine;
+    mine.entity = own;
+    mine.set_vel = true;
+    mine.vel = Vec3::Zero();
+    mine.cruise_mps = 0.f;
+    if (res == world::Result::Kill) mine.to_state = static_cast<int>(w.kinds[ents.kind[own]].states.size()) - 1;
+    inject_.entities.push_back(mine);
+  }
+  if (!inject_.collisions.empty() || !inject_.entities.empty()) sim_.inject(inject_);
   inject_.clear();
 }
 

@@ -81,6 +81,11 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
 
 NetBridge::~NetBridge() = default;
 
+bool NetBridge::dated_before_join(std::uint32_t timestamp) const {
+  // NPSNET nodes date their PDUs by the scenario clock in a relative timestamp (low bit 0).
+  return joined_t_ >= 0 && !(timestamp & 1u) && net::timestamp_difference(net::relative_timestamp(joined_t_), timestamp) > 0;
+}
+
 void NetBridge::set_source(DatagramSource source) {
   source_ = std::move(source);
   start_s_ = now_s_ = clock_s();
@@ -110,6 +115,7 @@ void NetBridge::catch_up(bool on) {
     for (size_t i = 0; i < own_.size(); ++i) prev_vel_[i] = ents.vel[own_[i]], prev_heading_[i] = ents.heading_deg[own_[i]];
     const double hb = remotes_.thresholds().heartbeat_s;
     for (double& s : fixed_last_sent_) s = clock_s() - hb;
+    joined_t_ = sim_.world().t;
   }
   catching_up_ = on;
 }
@@ -231,28 +237,6 @@ void NetBridge::before_step(world::World& w) {
   remotes_.mirror(now_s_);
 }
 
-void NetBridge::on_cultural(const net::EntityStatePdu& p) {
-  if (p.entity_id.site == opt_.site && p.entity_id.application == cultural_app_) return;  // our echo
-  world::World& w = sim_.world();
-  if (p.entity_id.entity == 0 || p.entity_id.entity > w.fixed.size()) return;
-  const int o = p.entity_id.entity - 1;
-  const world::Kind& k = w.kinds[w.fixed.kind[o]];
-  if (!same_type(k.dis, p.entity_type)) return;  // not the same object: other scenario or objects file
-  const int to = state_from_appearance(k, p.appearance);  // damage bits 3-4 (dis_mapping.hpp)
-  if (to > fixed_net_state_[o]) {
-    fixed_net_state_[o] = static_cast<int16_t>(to);
-    // Every node that knows a changed object keeps publishing it (states only go forward, so
-    // the highest heard wins): it outlives its first publisher, and a late joiner learns it.
-    if (fixed_slot_[o] < 0) start_publishing(o);
-  }
-  if (to > w.fixed.state[o]) {
-    inject_.clear();
-    inject_.fixed.push_back({o, to});
-    sim_.inject(inject_);
-    inject_.clear();
-  }
-}
-
 // ---------------------------------------------------------------- decide ----
 
 bool NetBridge::decides(const collision::Contact& c) {
@@ -262,76 +246,6 @@ bool NetBridge::decides(const collision::Contact& c) {
 }
 
 // ---------------------------------------------------------------- send ------
-
-void NetBridge::send_cultural(int o) {
-  if (static_cast<size_t>(o) + 1 > 0xFFFF) {
-    if (fixed_unnumbered_++ == 0)
-      std::fprintf(stderr, "npsnet: net: fixed object %d changed but cannot be published: cultural entity numbers end at 65535\n", o);
-    return;
-  }
-  net::EntityStatePdu p;
-  fill_cultural(sim_.world(), o, {static_cast<std::uint16_t>(opt_.site), cultural_app_, static_cast<std::uint16_t>(o + 1)}, p);
-  session_->send_to(group_at(sim_.world().fixed.pos[o]), p);
-}
-
-void NetBridge::start_publishing(int o) {
-  fixed_slot_[o] = static_cast<int>(fixed_published_.size());
-  fixed_published_.push_back(o);
-  fixed_last_sent_.push_back(now_s_);
-}
-
-void NetBridge::publish_fixed(const TickReport& r) {
-  for (const auto& d : r.applied.damage) {
-    if (!d.fixed) continue;
-    if (d.to_state <= fixed_net_state_[d.index]) continue;  // heard from the network already
-    fixed_net_state_[d.index] = static_cast<int16_t>(d.to_state);
-    if (fixed_slot_[d.index] < 0) start_publishing(d.index);
-    else fixed_last_sent_[fixed_slot_[d.index]] = now_s_;
-    if (!catching_up_) send_cultural(d.index);
-  }
-  if (catching_up_) return;
-  const double hb = remotes_.thresholds().heartbeat_s;
-  for (size_t i = 0; i < fixed_published_.size(); ++i)
-    if (now_s_ - fixed_last_sent_[i] >= hb) {
-      fixed_last_sent_[i] = now_s_;
-      send_cultural(fixed_published_[i]);
-    }
-}
-
-void NetBridge::publish_fires(const TickReport& r) {
-  const auto& ents = sim_.world().ents;
-  for (const int m : r.fired) {
-    if (m < 0 || !ents.local[m]) continue;
-    const int shooter = ents.owner[m], tgt = ents.target[m];
-    const net::EventId evn = next_event();
-    fire_event_[m] = evn.event_number;
-    session_->send_to(group_at(ents.pos[m]), fire_pdu(sim_.world(), m, shooter >= 0 ? own_id(shooter) : net::EntityId{},
-                                                      tgt >= 0 ? net_id(tgt) : net::EntityId{}, own_id(m), evn));
-  }
-}
-
-void NetBridge::publish_detonations(const TickReport& r) {
-  const auto& ents = sim_.world().ents;
-  for (const auto& d : r.changes.detonations) {
-    const int m = d.munition;
-    if (m < 0 || !ents.local[m]) continue;  // another node's round
-    auto it = fire_event_.find(m);
-    net::EventId evn{static_cast<std::uint16_t>(opt_.site), static_cast<std::uint16_t>(opt_.app), 0};
-    if (it != fire_event_.end()) {
-      evn.event_number = it->second;
-      fire_event_.erase(it);
-    } else {
-      evn = next_event();
-    }
-    const auto pdu = detonation_pdu(sim_.world(), d, ents.owner[m] >= 0 ? own_id(ents.owner[m]) : net::EntityId{},
-                                    d.target >= 0 ? net_id(d.target) : net::EntityId{}, own_id(m), evn);
-    const std::uint32_t group = group_at(d.point);
-    session_->send_to(group, pdu);
-    detonations_.sent(pdu, group, now_s_);
-  }
-  detonations_.resend_due(now_s_, remotes_.thresholds().heartbeat_s, remotes_.thresholds().timeout_s,
-                          [&](const net::DetonationPdu& pdu, std::uint32_t group) { session_->send_to(group, pdu); });
-}
 
 void NetBridge::after_tick(const TickReport& r) {
   now_s_ = clock_s();

@@ -7,7 +7,10 @@
 //   vehicle_publish the local vehicles' Entity States (DR, caps, round robin), deactivation
 //   collision_exchange collisions across nodes: announce, repeat, receive once (collision_outcome)
 //   repeat_ledger   Detonation and Collision PDUs repeated every heartbeat, applied once
+//   fixed_exchange  changed fixed objects as cultural features: publish, heartbeat, receive
+//   warfare_publish our Fire and Detonation PDUs (Detonations repeated every heartbeat)
 //   warfare_receive other simulators' Fire and Detonation (munition_table, munition_codes)
+//   net_bridge      session, receive dispatch, join catch-up, the tick's order, summary
 //   sim_management  Stop/Freeze, Start/Resume, Remove Entity, Acknowledge
 //   ownership       who decides a contact between entities of two nodes
 //   area_of_interest --aoi: the cell group of each PDU, the groups this node holds
@@ -187,6 +190,12 @@ class NetBridge {
 
   void on_cultural(const net::EntityStatePdu& p);
   void on_collision(const net::CollisionPdu& p, double arrival_s);
+  // Whether a PDU's relative timestamp (an NPSNET node's: scenario time, s past the hour) is
+  // before the scenario time this node joined a running exercise at (never when it did not join;
+  // a PDU more than 30 min older than the join reads as newer: timestamps wrap at the hour).
+  bool dated_before_join(std::uint32_t timestamp) const;
+  // A collision of our vehicle `own` from before we joined, outcome res (other: -1 when unknown).
+  void past_collision(int own, int other, world::Result res);
   void on_fire(const net::FirePdu& p);
   void on_detonation(const net::DetonationPdu& p, double arrival_s);
   void publish_vehicles();
@@ -220,6 +229,7 @@ class NetBridge {
   double start_s_ = 0, now_s_ = 0;
   bool started_ = false;
   bool catching_up_ = false;
+  double joined_t_ = -1;  // scenario time (s) this node joined a running exercise at; -1: from the start
 
   // Local vehicles we publish (world indices), one DrPublisher each.
   std::vector<int> own_;

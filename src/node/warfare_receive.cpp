@@ -76,7 +76,11 @@ void NetBridge::on_detonation(const net::DetonationPdu& p, double arrival_s) {
     d.result = "airburst";
   d.decides_fixed = false;  // the firing node publishes the fixed objects its round changed
   d.crater = fx.crater && res.crater;
-  d.blast = fx.blast && res.blast;
+  // A round that fell before this node joined (a repeat reaching a restarted node or a late
+  // joiner): its crater and the direct hit it names apply; its blast damages none of our
+  // vehicles: they stood elsewhere then (the catch-up moved them as if it never fell), and where
+  // a repeat finds them depends on when it arrives.
+  d.blast = fx.blast && res.blast && !dated_before_join(p.header.timestamp);
   d.hit_destroys = fx.hit_destroys && res.blast;
   d.quantity = std::max<int>(1, p.descriptor.quantity);
   d.munition_name = fx.name;

@@ -3,7 +3,8 @@
 // through the test's `deliver` policy (how many copies of a datagram reach a node: 0 = lost,
 // 2 = duplicated); each node drains its inbox at the start of its next tick (the bridge's source:
 // the bridge clock is then the scenario clock). Nodes tick in turn, node 1 first: deterministic,
-// no socket, no sleeping.
+// no socket, no sleeping. A node can be killed and restarted (a new process with the same numbers
+// that joins the running exercise: its scenario caught up headless, as run.cpp does).
 #pragma once
 #include <cstdint>
 #include <deque>
@@ -44,44 +45,39 @@ class Wire {
   // Nodes 1..n of `scenario_file` (its vehicles' `node`), application = node, site 1; remote
   // entity timeout `timeout_s` (a short one shortens the heartbeat, bridge_options.hpp).
   Wire(const std::string& scenario_file, int n, const std::string& tag, double timeout_s, Deliver deliver)
-      : deliver_(std::move(deliver)) {
-    const world::Scenario sc = world::load_scenario(scenario_file);
-    const world::World w = world::build_world(sc);
-    for (int k = 1; k <= n; ++k) {
-      auto nd = std::make_unique<WiredNode>();
-      nd->id = k;
-      nd->events = scratch_dir() / (tag + "_n" + std::to_string(k) + ".jsonl");
-      nd->log = std::make_unique<node::EventLog>(nd->events);
-      nd->sim = std::make_unique<node::Simulation>(w, sc, *nd->log, 0.1);
-      node::BridgeOptions bo;
-      bo.offline = true;
-      bo.node = k;
-      bo.app = k;
-      bo.timeout_s = timeout_s;
-      auto session = node::open_session(bo);
-      session->set_offline_sink([this, k](std::uint32_t, std::span<const std::uint8_t> b) {
-        const std::vector<std::uint8_t> bytes(b.begin(), b.end());
-        for (auto& other : nodes_)
-          if (other->id != k)
-            for (int c = deliver_(k, other->id, bytes); c > 0; --c) other->inbox.push_back(bytes);
-      });
-      nd->bridge = std::make_unique<node::NetBridge>(bo, std::move(session), *nd->sim, *nd->log);
-      nd->bridge->attach();
-      WiredNode* self = nd.get();
-      nd->bridge->set_source([self](double now_s, node::NetBridge& b) {
-        while (!self->inbox.empty()) {
-          const auto d = std::move(self->inbox.front());
-          self->inbox.pop_front();
-          b.receive(d, now_s);
-        }
-      });
-      nodes_.push_back(std::move(nd));
-    }
+      : deliver_(std::move(deliver)),
+        tag_(tag),
+        timeout_s_(timeout_s),
+        scenario_(world::load_scenario(scenario_file)),
+        world_(world::build_world(scenario_)) {
+    for (int k = 1; k <= n; ++k) nodes_.push_back(make_node(k, tag + "_n" + std::to_string(k)));
   }
-  // Every node ticks once, in order, `ticks` times.
+  // Every live node ticks once, in order, `ticks` times.
   void run(int ticks) {
     for (int i = 0; i < ticks; ++i)
-      for (auto& nd : nodes_) nd->sim->tick();
+      for (auto& nd : nodes_)
+        if (nd->sim) nd->sim->tick();
+  }
+  // Node k dies (SIGKILL): it ticks no more, sends nothing, and what is sent to it is lost.
+  void kill(int k) {
+    WiredNode& nd = node(k);
+    nd.bridge.reset();
+    nd.sim.reset();
+    nd.inbox.clear();
+  }
+  // Node k starts again (a new process with the same numbers, run.cpp's join): it catches its
+  // own scenario up headless (no network, no event log, no fire) for the `ticks` the exercise has
+  // run, then goes live. Its new events go to a new log (events of node k: this one's).
+  void restart(int k, int ticks) {
+    auto nd = make_node(k, tag_ + "_n" + std::to_string(k) + "_restart");
+    nd->log->mute(true);
+    nd->sim->hold_fire(true);
+    nd->bridge->catch_up(true);
+    for (int i = 0; i < ticks; ++i) nd->sim->tick();
+    nd->bridge->catch_up(false);
+    nd->sim->hold_fire(false);
+    nd->log->mute(false);
+    nodes_.at(static_cast<size_t>(k - 1)) = std::move(nd);
   }
   WiredNode& node(int k) { return *nodes_.at(static_cast<size_t>(k - 1)); }
   // The events node k has written so far (the log is flushed every tick).
@@ -94,7 +90,42 @@ class Wire {
   }
 
  private:
+  std::unique_ptr<WiredNode> make_node(int k, const std::string& name) {
+    auto nd = std::make_unique<WiredNode>();
+    nd->id = k;
+    nd->events = scratch_dir() / (name + ".jsonl");
+    nd->log = std::make_unique<node::EventLog>(nd->events);
+    nd->sim = std::make_unique<node::Simulation>(world_, scenario_, *nd->log, 0.1);
+    node::BridgeOptions bo;
+    bo.offline = true;
+    bo.node = k;
+    bo.app = k;
+    bo.timeout_s = timeout_s_;
+    auto session = node::open_session(bo);
+    session->set_offline_sink([this, k](std::uint32_t, std::span<const std::uint8_t> b) {
+      const std::vector<std::uint8_t> bytes(b.begin(), b.end());
+      for (auto& other : nodes_)
+        if (other->id != k && other->bridge)
+          for (int c = deliver_(k, other->id, bytes); c > 0; --c) other->inbox.push_back(bytes);
+    });
+    nd->bridge = std::make_unique<node::NetBridge>(bo, std::move(session), *nd->sim, *nd->log);
+    nd->bridge->attach();
+    WiredNode* self = nd.get();
+    nd->bridge->set_source([self](double now_s, node::NetBridge& b) {
+      while (!self->inbox.empty()) {
+        const auto d = std::move(self->inbox.front());
+        self->inbox.pop_front();
+        b.receive(d, now_s);
+      }
+    });
+    return nd;
+  }
+
   Deliver deliver_;
+  std::string tag_;
+  double timeout_s_;
+  world::Scenario scenario_;
+  world::World world_;
   std::vector<std::unique_ptr<WiredNode>> nodes_;
 };
 

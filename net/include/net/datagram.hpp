@@ -17,8 +17,8 @@
 //    management originating id) has our site and
 //    application are our own echo and are ignored (counted); not our echo (a datagram we did not
 //    send): another simulator using our identity (counted as own_id_clash, ignored), except a
-//    Detonation: another node repeating one of our rounds (node/detonation_ledger.hpp adoption,
-//    after our process was restarted), delivered.
+//    Detonation or a Collision: another node repeating a round or a collision of ours
+//    (node/repeat_ledger.hpp adoption, after our process was restarted), delivered.
 #pragma once
 
 #include <cstddef>

@@ -17,7 +17,8 @@
 //    the session's filter and counters exactly as poll does.
 //  * Our own (site, application) in a received datagram: our echo when the datagram is one of
 //    the last 1024 we sent (same bytes), else another simulator using our identity
-//    (Counters::own_id_clash); both are ignored.
+//    (Counters::own_id_clash); both are ignored (but for a Detonation or Collision that is not
+//    our echo: an adopter repeating our earlier process's PDU, delivered; datagram.hpp).
 //  * SessionConfig::offline: no socket at all (a node fed from a recording): send() encodes and
 //    counts as usual, and the datagram goes nowhere (or to the offline sink, when one is set:
 //    tests wire nodes of one process together with it); poll() finds nothing; transport() must

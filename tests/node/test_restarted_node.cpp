@@ -1,0 +1,121 @@
+// What a node killed and restarted gets back (issue 11, README "Faults": joining a running
+// exercise): two nodes in one process (wire_support.hpp) run lan.toml, where node 1's tank t1 and
+// node 2's APC a2 kill each other at about t = 3 s (node 1 decides: it issues the Collision PDU,
+// issuing t1, colliding a2, outcome kill) and t1b bounces off a2b. One node is killed at 4 s and
+// started again at 8 s: it catches its scenario up headless (no network), so its vehicle is
+// intact at its scripted place, and the past comes from the network.
+//  * Node 1 restarted: node 2 adopted node 1's Collision PDUs (repeat_ledger.hpp) and repeats
+//    them; their issuing entity is node 1's own t1. They are no identity clash: delivered, the
+//    kill applies to t1 once, and the echo filter still counts a clash for other PDU types.
+//  * Node 2 restarted: node 1 repeats its Collision PDU naming a2 as the colliding entity: a2
+//    comes back destroyed (this healed before: the repeat waits for t1's Entity State).
+//  * Node 2 restarted while node 1 is dead too (three nodes; node 3 adopted node 1's PDU): t1
+//    is never heard again, so the PDU waited for it for ever and a2 came back intact. A
+//    collision of ours dated before the join waits one DIS timeout for the other entity, then
+//    applies without it.
+//  * restart.toml: node 1's round hits node 2's v2 at t ~ 1.3 s; node 2 restarts at 8 s while its
+//    m2 passes within the blast radius of that point (it was 90 m away when the round fell). The
+//    firer's repeat destroys v2 again (the direct hit the PDU names; this healed before), and
+//    blasts none of node 2's vehicles: before, m2 was damaged by a round that fell 7 s earlier.
+#include <gtest/gtest.h>
+
+#include "wire_support.hpp"
+
+using namespace npsnet;
+
+namespace {
+
+const std::string kLan = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/lan.toml";
+const std::string kRestart = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/restart.toml";
+constexpr double kTimeoutS = 2.4;  // heartbeat 1 s (Annex C ratio 5:12)
+constexpr int kKillAt = 40, kDeadFor = 40, kAfter = 40;  // ticks of 0.1 s
+
+int count(const std::vector<nlohmann::json>& ev, const std::string& type, const std::string& pair = "") {
+  int n = 0;
+  for (const auto& e : ev)
+    if (e["event"] == type && (pair.empty() || e.value("a", "") + "/" + e.value("b", "") == pair ||
+                               e.value("b", "") + "/" + e.value("a", "") == pair))
+      ++n;
+  return n;
+}
+
+int destroyed(const test::WiredNode& n, const std::string& id) {
+  return static_cast<int>(n.world().kinds[n.world().ents.kind[n.index(id)]].states.size()) - 1;
+}
+
+// Runs lan.toml with node `restarted` killed at kKillAt and restarted kDeadFor ticks later.
+void kill_and_restart(test::Wire& wire, int restarted) {
+  wire.run(kKillAt);
+  ASSERT_EQ(count(wire.events(restarted), "collision", "t1/a2"), 1) << "t1 and a2 collided before the kill";
+  wire.kill(restarted);
+  wire.run(kDeadFor);
+  wire.restart(restarted, kKillAt + kDeadFor);
+  wire.run(kAfter);
+}
+
+}  // namespace
+
+TEST(RestartedNode, AnAdoptedCollisionOfItsOwnVehicleIsDeliveredAndApplied) {
+  test::Wire wire(kLan, 2, "own_adopted", kTimeoutS, [](int, int, const std::vector<std::uint8_t>&) { return 1; });
+  kill_and_restart(wire, 1);
+  auto& n1 = wire.node(1);
+  const auto ev = wire.events(1);
+  EXPECT_EQ(n1.bridge->counters().own_id_clash, 0u) << "node 2's adopted repeat of our Collision PDU is no clash";
+  EXPECT_EQ(count(ev, "id_clash"), 0);
+  const int t1 = n1.index("t1");
+  EXPECT_EQ(n1.world().ents.state[t1], destroyed(n1, "t1")) << "t1 was killed in that collision before the restart";
+  EXPECT_EQ(n1.world().ents.vel[t1], Vec3::Zero());
+  EXPECT_EQ(count(ev, "collision", "t1/a2"), 1) << "applied once, though node 2 repeats it every heartbeat";
+  EXPECT_EQ(count(ev, "collision", "t1b/a2b"), 1) << "the bounce of t1b is recorded once";
+  // Node 2 sees t1 destroyed again (the restarted node's Entity States).
+  auto& n2 = wire.node(2);
+  EXPECT_EQ(n2.world().ents.state[n2.index("t1")], destroyed(n2, "t1"));
+}
+
+TEST(RestartedNode, ItsVehicleKilledInAnotherNodesCollisionComesBackKilled) {
+  test::Wire wire(kLan, 2, "other_issued", kTimeoutS, [](int, int, const std::vector<std::uint8_t>&) { return 1; });
+  kill_and_restart(wire, 2);
+  auto& n2 = wire.node(2);
+  const auto ev = wire.events(2);
+  const int a2 = n2.index("a2");
+  EXPECT_EQ(n2.world().ents.state[a2], destroyed(n2, "a2")) << "a2 was killed by node 1's collision before the restart";
+  EXPECT_EQ(n2.world().ents.vel[a2], Vec3::Zero());
+  EXPECT_EQ(count(ev, "collision", "t1/a2"), 1) << "applied once, though node 1 repeats it every heartbeat";
+  auto& n1 = wire.node(1);
+  EXPECT_EQ(n1.world().ents.state[n1.index("a2")], destroyed(n1, "a2"));
+}
+
+TEST(RestartedNode, ItsVehicleKilledByADeadNodesAdoptedCollisionComesBackKilled) {
+  test::Wire wire(kLan, 3, "issuer_dead", kTimeoutS, [](int, int, const std::vector<std::uint8_t>&) { return 1; });
+  wire.run(kKillAt);
+  ASSERT_EQ(count(wire.events(3), "collision", "t1/a2"), 1) << "node 3 recorded node 1's collision";
+  wire.kill(1);
+  wire.kill(2);
+  wire.run(kDeadFor);
+  wire.restart(2, kKillAt + kDeadFor);
+  wire.run(kAfter);
+  auto& n2 = wire.node(2);
+  const int a2 = n2.index("a2");
+  EXPECT_EQ(n2.world().ents.state[a2], destroyed(n2, "a2")) << "node 3's adopted repeat names a2 killed";
+  EXPECT_EQ(n2.world().ents.vel[a2], Vec3::Zero());
+  auto& n3 = wire.node(3);
+  EXPECT_EQ(n3.world().ents.state[n3.index("a2")], destroyed(n3, "a2")) << "node 3 sees a2 destroyed again";
+}
+
+TEST(RestartedNode, APastRoundDestroysTheVehicleItHitAndBlastsNoneOfOurs) {
+  test::Wire wire(kRestart, 2, "past_round", kTimeoutS, [](int, int, const std::vector<std::uint8_t>&) { return 1; });
+  wire.run(kKillAt);
+  {
+    auto& n2 = wire.node(2);
+    ASSERT_EQ(n2.world().ents.state[n2.index("v2")], destroyed(n2, "v2")) << "g1's round hit v2";
+    ASSERT_EQ(n2.world().ents.state[n2.index("m2")], 0) << "m2 was out of the blast";
+  }
+  wire.kill(2);
+  wire.run(kDeadFor);
+  wire.restart(2, kKillAt + kDeadFor);
+  wire.run(kAfter);
+  auto& n2 = wire.node(2);
+  EXPECT_EQ(n2.world().ents.state[n2.index("v2")], destroyed(n2, "v2")) << "the repeated Detonation names v2 hit";
+  EXPECT_EQ(n2.world().ents.state[n2.index("m2")], 0) << "m2 was 90 m away when the round fell";
+  EXPECT_EQ(count(wire.events(2), "detonation"), 1) << "applied once";
+}
