@@ -345,8 +345,12 @@ int run_command(const RunOptions& opt) {
   const auto go_on = [&](long i) {
     return ended_by ? more() && i < end_by : i < ticks || (more() && i < ticks + extra);
   };
+  // Paced runs: how far behind the wall clock the ticks ran (printed at the end).
+  double worst_late_s = 0, longest_tick_s = 0;
+  long worst_late_tick = -1, late_ticks = 0;
   try {
     for (long i = first; go_on(i); ++i, ++done) {
+      const auto tick_start = std::chrono::steady_clock::now();
 #ifdef NPSNET_HAVE_NET
       if (bridge && bridge->frozen()) {  // Stop/Freeze: the scenario clock stands still
         const auto f0 = std::chrono::steady_clock::now();
@@ -366,6 +370,13 @@ int run_command(const RunOptions& opt) {
 #endif
       if (track) track->after_tick(sim.world(), log);
       write_state_due();
+      if (paced) {  // the tick's work ended this long past its deadline (0: on time)
+        const auto now = std::chrono::steady_clock::now();
+        const double late = std::chrono::duration<double>(now - deadline).count();
+        longest_tick_s = std::max(longest_tick_s, std::chrono::duration<double>(now - tick_start).count());
+        if (late > 0) ++late_ticks;
+        if (late > worst_late_s) worst_late_s = late, worst_late_tick = i;
+      }
       if (player && player->quit()) end_now("quit", i);  // Esc, or a quit action
       if (paced && !ended_by) std::this_thread::sleep_until(deadline);
       if (!o.quiet && i + 1 >= next_progress && ticks >= 10) {
@@ -413,6 +424,10 @@ int run_command(const RunOptions& opt) {
   if (!o.quiet) {
     std::fprintf(stderr, "npsnet: done: %ld ticks in %.2f s wall (%.3f ms/tick); events -> %s\n", done, wall,
                  1000 * wall / std::max(1L, done), o.events.string().c_str());
+    if (paced)
+      std::fprintf(stderr, "npsnet: paced: %ld of %ld ticks ended past their deadline, the worst by %.1f ms%s; "
+                   "longest tick %.1f ms\n", late_ticks, done, 1000 * worst_late_s,
+                   late_ticks ? (" (tick " + std::to_string(worst_late_tick) + ")").c_str() : "", 1000 * longest_tick_s);
     for (const auto& [k, n] : log.counts()) std::fprintf(stderr, "  %-12s %d\n", k.c_str(), n);
     const auto& s = sim.stats();
     std::fprintf(stderr, "  collision method %s: fixed tests %lld, L1 %lld, L2 %lld, L3 %lld (rejected %lld), contacts %lld\n", sc.collision_method.c_str(),
