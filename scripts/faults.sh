@@ -23,6 +23,11 @@
 # --control the same exercise runs with no faults at all (nodes 1-4 from the start, no kill,
 # no partition, clean links), the reference.
 #
+# Every node also logs every vehicle's position every tick (--track-every 0.1), and the script
+# prints the dead-reckoning error of remote entities (npsnet dr-error, from all the nodes' logs)
+# over 0-8 s (loss, duplication, reordering and delay only: no partition, kill or joiner yet) and
+# over 36-41 s (after the faults stop).
+#
 # Usage: scripts/faults.sh [--control] [--out DIR] [--loss PERCENT]
 # Exit: 0 when all four worlds agree, 1 when not (the differences are printed), 2 bad arguments,
 # 77 when this machine cannot run it. Everything it creates is named with a per-run prefix and
@@ -38,7 +43,7 @@ while [ $# -gt 0 ]; do
     --control) CONTROL=1 ;;
     --out) OUT="$2"; shift ;;
     --loss) LOSS="$2"; shift ;;
-    -h|--help) sed -n '2,24p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,29p' "$0"; exit 0 ;;
     *) echo "faults: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -46,43 +51,15 @@ done
 TOOL=faults
 # shellcheck source=scripts/netns_lib.sh
 source "$ROOT/scripts/netns_lib.sh"
-netns_preflight
-command -v python3 >/dev/null && [ -c /dev/net/tun ] || skip "needs python3 and /dev/net/tun"
-[ -n "$OUT" ] || OUT=$(mktemp -d /tmp/npsnet-faults.XXXXXX)
-mkdir -p "$OUT"
+shaped_lan_preflight faults
 
 P="nft$(( $$ % 100000 ))"
-HUB="${P}h"
 PORT=$(( 20000 + $$ % 40000 ))
 SCENARIO="$ROOT/tests/multinode/data/faults.toml"
-cleanup() {
-  set +e
-  stop_processes
-  ip -n "$HUB" link del br0 2>/dev/null
-  netns_remove_all
-}
-trap cleanup EXIT
+trap shaped_lan_cleanup EXIT
 trap 'exit 1' INT TERM
-
-newns "$HUB"
-ip -n "$HUB" link add br0 type bridge mcast_snooping 0
-ip -n "$HUB" link set br0 up
-SHAPE=(20 "$LOSS" --jitter-ms 10 --dup 5 --reorder 25 --one-way)
-[ "$CONTROL" = 1 ] && SHAPE=(0 0 --one-way)
-for k in 1 2 3 4; do
-  N="${P}n$k"
-  newns "$N"
-  rm -f "$OUT/link$k.log"
-  ip netns exec "$HUB" python3 "$ROOT/scripts/linkshaper.py" "p$k" eth0 "$N" "${SHAPE[0]}" "${SHAPE[1]}" "$k" \
-    "${SHAPE[@]:2}" > "$OUT/link$k.log" 2>&1 &
-  SHAPERS+=($!)
-  for _ in $(seq 1 50); do grep -qs ready "$OUT/link$k.log" && break; sleep 0.1; done
-  grep -q ready "$OUT/link$k.log" || { cat "$OUT/link$k.log" >&2; exit 1; }
-  ip -n "$HUB" link set "p$k" master br0
-  ip -n "$HUB" link set "p$k" up
-  ip -n "$N" addr add "10.215.0.$((10 + k))/24" dev eth0
-  ip -n "$N" link set eth0 up
-done
+fault_shape "$LOSS" "$CONTROL"
+shaped_lan "$P" 4 10.215.0 "${SHAPE[@]}"
 
 T0=$(( $(date +%s) + 2 ))
 END=$(( T0 + 42 ))
@@ -91,7 +68,7 @@ node() {  # node K, run tag, start (UNIX s): runs until END
   ip netns exec "${P}n$k" env NPSNET_DIS_TIMEOUT_S="${NPSNET_DIS_TIMEOUT_S:-12}" "$NPSNET" run --scenario "$SCENARIO" \
     --no-render --quiet --net "udp://239.1.2.3:$PORT" --iface "10.215.0.$((10 + k))" --node "$k" --site 1 --app "$k" \
     --start-at "$start" --seconds "$(( END - start ))" --events "$OUT/events_$tag.jsonl" --snapshots "$OUT/snap_$tag" \
-    --state-out "$OUT/state_$k.json" --state-at "$(( END - 1 - start ))" > "$OUT/out_$tag.txt" 2>&1 &
+    --state-out "$OUT/state_$k.json" --state-at "$(( END - 1 - start ))" --track-every 0.1 > "$OUT/out_$tag.txt" 2>&1 &
   PIDS+=($!)
 }
 at() { while [ "$(date +%s)" -lt "$(( T0 + $1 ))" ]; do sleep 0.05; done; }  # until T0 + S
@@ -109,16 +86,23 @@ if [ "$CONTROL" = 0 ]; then
   at 36; echo "faults: t=36 faults stop: every link clean" >&2; for k in 1 2 3 4; do sig_link "$k" HUP; done
 fi
 rc=0
+LIVE=()
 for pid in "${PIDS[@]}"; do
   [ "$pid" = "${PIDS[2]}" ] && [ "$CONTROL" = 0 ] && continue  # the killed one
-  while kill -0 "$pid" 2>/dev/null && [ "$(date +%s)" -lt $(( END + 30 )) ]; do sleep 0.2; done
-  kill -0 "$pid" 2>/dev/null && { echo "faults: a node still runs 30 s after the end: killed" >&2; kill -KILL "$pid"; rc=1; }
-  wait "$pid" || { echo "faults: a node failed (see $OUT/out_*.txt)" >&2; rc=1; }
+  LIVE+=("$pid")
 done
+wait_nodes $(( END + 30 )) "${LIVE[@]}" || rc=1
 PIDS=()
-for pid in "${SHAPERS[@]}"; do kill -TERM "$pid" 2>/dev/null; wait "$pid" 2>/dev/null || true; done
-SHAPERS=()
-cat "$OUT"/link?.log | grep linkshaper >&2 || true
+stop_shapers
+LOGS=()
+for f in "$OUT"/events_n1.jsonl "$OUT"/events_n2.jsonl "$OUT"/events_n3.jsonl "$OUT"/events_n3b.jsonl "$OUT"/events_n4.jsonl; do
+  [ -s "$f" ] && LOGS+=("$f")
+done
+for window in "0 8" "36 41"; do
+  set -- $window
+  echo "faults: dead-reckoning error of remote entities, t = $1-$2 s (npsnet dr-error --from $1 --to $2 ${LOGS[*]##*/}):" >&2
+  "$NPSNET" dr-error --from "$1" --to "$2" "${LOGS[@]}" >&2 || { echo "faults: npsnet dr-error failed" >&2; rc=1; }
+done
 python3 - "$OUT" "$SCENARIO" <<'PY' || rc=1
 import json, os, sys, tomllib
 out = sys.argv[1]

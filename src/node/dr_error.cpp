@@ -165,6 +165,12 @@ std::string format_report(const DrErrorReport& r) {
       "  3-D (m): p50      p90      p99      max\n";
   char b[512];
   auto line = [&](const char* what, const DrErrorRow& row) {
+    if (row.horizontal.count == 0) {  // nothing matched: no figures
+      std::snprintf(b, sizeof b, "%-8s %-24s %8ld %9ld %24s %8s %8s %8s %17s %8s %8s %8s\n", what, row.name.c_str(), 0L,
+                    row.unmatched, "-", "-", "-", "-", "-", "-", "-", "-");
+      out += b;
+      return;
+    }
     std::snprintf(b, sizeof b, "%-8s %-24s %8ld %9ld %24.3f %8.3f %8.3f %8.3f %17.3f %8.3f %8.3f %8.3f\n", what,
                   row.name.c_str(), row.horizontal.count, row.unmatched, row.horizontal.p50, row.horizontal.p90,
                   row.horizontal.p99, row.horizontal.max, row.full.p50, row.full.p90, row.full.p99, row.full.max);
