@@ -24,7 +24,10 @@
 //    publishing (acceleration filter, yaw rate, the dead-reckoning bound of dr_bound.hpp) runs on
 //    the Simulation's worker threads (Simulation::jobs), each vehicle into its own slot; then, in
 //    order on the tick's thread, the vehicles the bound cannot clear get their exact ECEF state
-//    and DR test and are sent: the same PDUs for any thread count.
+//    and DR test and are sent: the same PDUs for any thread count. The exact states (geodesy)
+//    are computed on the workers too, a batch ahead of that loop in its order, each into its own
+//    slot; the loop takes a vehicle's when it reaches it (the same state and anchor it would
+//    compute there; those it does not reach are dropped).
 //  * Net out cost: a vehicle is turned into ECEF / DIS terms (geodesy) only when it may need an
 //    Entity State (dr_bound.hpp: exactly the vehicles the exact DR test would send, never an
 //    approximation), when its damage or cell changed, or when it is sent; past the per-tick cap
@@ -240,6 +243,12 @@ class NetBridge {
   std::vector<float> yaw_rate_;  // per own vehicle: this tick's heading change, rad/s
   std::vector<DrAnchor> anchors_;  // per own vehicle: its last exact DR test (dr_bound.hpp)
   std::vector<std::uint8_t> skip_;  // per own vehicle: removed, or this tick's Entity State surely not due
+  std::vector<std::uint32_t> order_;  // this tick's own vehicles not skipped, in round-robin order
+  struct Tested {                     // an exact test made ahead on the pool (vehicle_publish.cpp)
+    DrAnchor anchor;
+    net::KinematicState state;
+  };
+  std::vector<Tested> tested_;
   std::uint64_t exact_tests_ = 0;   // vehicles turned into ECEF for the DR test, all ticks
   std::uint64_t es_digest_ = 1469598103934665603ull;  // FNV-1a of every Entity State sent
   std::vector<std::uint32_t> sent_group_;  // per own vehicle: the group of its last Entity State

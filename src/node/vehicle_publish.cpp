@@ -28,6 +28,11 @@ constexpr double kAtRestMps = 0.05;
 // a simulation may always send an Entity State before its heartbeat is due.
 constexpr int kAnnounceRepeats = 2;
 constexpr double kAnnounceGapS = 0.5;
+// Exact DR tests made ahead per pool round (with worker threads): what the cap leaves room for
+// (plus the first deferred; nearly every vehicle the bound cannot clear is sent: about 129 tests
+// a tick for the 128 sent in a 20,000-vehicle crowd), at least kMinTestBatch, at most
+// kMaxTestBatch; at least kTestGrain tests a thread (one test: about 36,000 instructions).
+constexpr size_t kMinTestBatch = 16, kMaxTestBatch = 512, kTestGrain = 4;
 
 double wrap180(double d) {
   d = std::fmod(d + 180.0, 360.0);
@@ -72,9 +77,21 @@ void NetBridge::publish_vehicles() {
   };
   if (core::Jobs* jobs = sim_.jobs()) jobs->for_chunks(n, 2048, local);
   else local(0, 0, n);
-  // Round robin from where the last tick's cap stopped, so no vehicle waits more than a few ticks.
-  for (size_t k = 0, i = n ? rr_ % n : 0; k < n; ++k, i = i + 1 == n ? 0 : i + 1) {
-    if (skip_[i]) continue;  // removed, or the exact test would say None
+  // Round robin from where the last tick's cap stopped, so no vehicle waits more than a few ticks;
+  // removed vehicles and those the exact test would pass over (skip_) are not looked at.
+  order_.clear();
+  for (size_t k = 0, i = n ? rr_ % n : 0; k < n; ++k, i = i + 1 == n ? 0 : i + 1)
+    if (!skip_[i]) order_.push_back(static_cast<std::uint32_t>(i));
+  // With worker threads, the exact tests (exact_state: geodesy) of the next vehicles in that
+  // order (a batch, kMaxTestBatch) run on the pool, each into its own slot (its anchor copied
+  // first); the loop takes a vehicle's slot when it reaches it. exact_state reads the world and
+  // the vehicle's own publisher and anchor only, which the loop changes only at that vehicle, so
+  // the slot holds what the loop would compute there; results the loop does not reach (past the
+  // cap) are dropped, anchors and counts untouched. Not once the cap defers all but changes.
+  core::Jobs* jobs = sim_.jobs();
+  size_t tested0 = 0, tested1 = 0;  // positions in order_ whose tests are in tested_
+  for (size_t p = 0; p < order_.size(); ++p) {
+    const size_t i = order_[p];
     const int e = own_[i];
     const std::uint32_t app = damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]);
     const std::uint32_t group = group_at(w.ents.pos[e]);
@@ -83,8 +100,29 @@ void NetBridge::publish_vehicles() {
     // A quick repeat of a first Entity State or of a damage change (kAnnounceRepeats).
     const bool repeat = announce_left_[i] > 0 && t >= announce_at_[i] - 1e-9;
     const bool capped = (!pack_ || aoi_) && sent_now >= kMaxDatagramsPerTick;
-    if (capped && !changed && first_deferred != n && opt_.dr_prefilter) continue;  // deferred whatever it says
-    net::KinematicState s = exact_state(w, e, pubs_[i], t, anchors_[i]);
+    const bool deferring = capped && first_deferred != n && opt_.dr_prefilter;
+    if (deferring && !changed) continue;  // deferred whatever it says
+    if (jobs && !deferring && p >= tested1) {
+      const size_t room = (!pack_ || aoi_) && opt_.dr_prefilter
+                              ? (sent_now < kMaxDatagramsPerTick ? kMaxDatagramsPerTick - sent_now : 0) + 1
+                              : kMaxTestBatch;
+      tested0 = p, tested1 = std::min(order_.size(), p + std::clamp(room, kMinTestBatch, kMaxTestBatch));
+      tested_.resize(tested1 - tested0);
+      jobs->for_chunks(tested1 - tested0, kTestGrain, [&](int, size_t q0, size_t q1) {
+        for (size_t q = q0; q < q1; ++q) {
+          const size_t j = order_[tested0 + q];
+          tested_[q].anchor = anchors_[j];
+          tested_[q].state = exact_state(w, own_[j], pubs_[j], t, tested_[q].anchor);
+        }
+      });
+    }
+    net::KinematicState s;
+    if (p >= tested0 && p < tested1) {
+      s = tested_[p - tested0].state;
+      anchors_[i] = tested_[p - tested0].anchor;
+    } else {
+      s = exact_state(w, e, pubs_[i], t, anchors_[i]);
+    }
     ++exact_tests_;
     s.acceleration = anchors_[i].jac * accel_[i];
     s.angular_velocity = Eigen::Vector3d(0, 0, yaw_rate_[i]);
