@@ -19,9 +19,13 @@ inline constexpr double kmh2mps(double v) { return v / 3.6; }
 inline constexpr double mps2kmh(double v) { return v * 3.6; }
 
 // Wrap an angle in degrees to [0, 360). An angle already in range is returned as it is (what
-// fmod gives for it, -0 included: the same bits without the libm call of the hot loops).
+// fmod gives for it, -0 included: the same bits without the libm call of the hot loops); one
+// within a turn below or above gets deg + 360 or deg - 360, as fmod's exact remainder (deg itself
+// for |deg| < 360; deg - 360, exact for deg in [360, 720) by Sterbenz's lemma) then gives.
 inline double wrap360(double deg) {
   if (deg >= 0.0 && deg < 360.0) return deg;
+  if (deg > -360.0 && deg < 0.0) return deg + 360.0;
+  if (deg >= 360.0 && deg < 720.0) return deg - 360.0;
   double r = std::fmod(deg, 360.0);
   return r < 0 ? r + 360.0 : r;
 }

@@ -35,7 +35,8 @@ constexpr double kAnnounceGapS = 0.5;
 constexpr size_t kMinTestBatch = 16, kMaxTestBatch = 512, kTestGrain = 4;
 
 double wrap180(double d) {
-  d = std::fmod(d + 180.0, 360.0);
+  d += 180.0;
+  if (!(d >= 0.0 && d < 360.0)) d = std::fmod(d, 360.0);  // in range fmod gives d itself
   if (d < 0) d += 360.0;
   return d - 180.0;
 }

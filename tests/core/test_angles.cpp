@@ -24,7 +24,9 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 
 TEST(Angles, Wrap360GivesTheBitsOfFmodInAndOutOfRange) {
   std::vector<double> xs = {0.0, -0.0, 1e-300, -1e-300, 359.99999999999994, 360.0, -360.0, 720.0, 180.0,
-                            -180.0, 540.25, -0.5, std::nextafter(360.0, 0.0), 1e9, -1e9};
+                            -180.0, 540.25, -0.5, std::nextafter(360.0, 0.0), 1e9, -1e9,
+                            std::nextafter(-360.0, 0.0), std::nextafter(720.0, 0.0), std::nextafter(360.0, 720.0),
+                            -359.99999999999994, -1e-17, 719.9, -720.0, 1080.0};
   std::mt19937_64 rng(13);
   std::uniform_real_distribution<double> any(-1000.0, 1000.0);
   for (int i = 0; i < 100000; ++i) xs.push_back(any(rng));
