@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include <cmath>
 #include <cstdio>
 
 #include "node/dis_mapping.hpp"

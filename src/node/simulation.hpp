@@ -102,7 +102,7 @@ class Simulation {
   // While fire is held, fire() launches nothing and returns -1 (scheduled fires, the player's,
   // autonomous return fire): a node catching up to a running exercise (run.cpp) does not fire
   // again the rounds of its earlier process, nor those a late joiner would have fired before it
-  // joined; their craters arrive from the network (node/detonation_ledger.hpp).
+  // joined; their craters arrive from the network (node/repeat_ledger.hpp).
   void hold_fire(bool held) { fire_held_ = held; }
   int find_entity(const std::string& id) const;
 
