@@ -1,6 +1,7 @@
 // The continuous method (collision.hpp): swept spheres in the broad phase, analytic time of
 // impact, shape tiers up to what the pair needs, border objects from every gridsquare.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <stdexcept>
 #include <tuple>
@@ -193,6 +194,15 @@ bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
   return hit;
 }
 
+Vec3 Detector::centre_end(const world::World& w, int e) {
+  const auto& ents = w.ents;
+  const uint32_t bits = std::bit_cast<uint32_t>(ents.heading_deg[e]);  // -0 and +0 turn apart
+  if (bits != yaw_bits_[e]) yaw_q_[e] = world::yaw_quaternion(ents.heading_deg[e]), yaw_bits_[e] = bits;
+  const world::Kind& k = w.kinds[ents.kind[e]];
+  return ents.pos[e] + world::pose_rotation(yaw_q_[e], ents.pitch_deg[e], ents.roll_deg[e]) *
+                           k.centre_by_state[ents.state[e]].cast<double>();
+}
+
 void Detector::rank_ids(const world::World& w) {
   if (ranked_created_ != w.ents.created || rank_.ranks().size() != w.ents.size()) {  // ids made or reclaimed
     rank_.update(w.ents.id);
@@ -338,6 +348,7 @@ void Detector::detect_continuous(const world::World& w) {
   // Active entities, their sweeps and swept boxes. Reject non-finite input before any use.
   order_.clear();
   start_hpr_.resize(n), prev_hpr_.resize(n), prev_kind_.resize(n, -1), prev_ok_.resize(n, 0);
+  yaw_q_.resize(n), yaw_bits_.resize(n, 0x7fc00000u);
   for (int e = 0; e < n; ++e) {
     if (!ents.active[e]) {
       prev_ok_[e] = 0;
@@ -375,7 +386,7 @@ void Detector::detect_continuous(const world::World& w) {
     for (size_t i = i0; i < i1; ++i) {
       const int e = static_cast<int>(order_[i]);
       check_finite(ents, e);
-      c1_[i] = world::entity_centre(w, e);
+      c1_[i] = centre_end(w, e);
       c0_[i] = c1_[i] - ents.vel[e] * dt;
       if (!finite(c0_[i]))
         throw std::invalid_argument("collision: entity '" + ents.id[e] + "': velocity * dt overflows");
