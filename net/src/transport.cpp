@@ -4,11 +4,15 @@
 #endif
 #include "net/transport.hpp"
 
+#include <algorithm>
 #include <array>
 #include <asio.hpp>
 #include <cerrno>
 #include <charconv>
+#include <chrono>
+#include <cmath>
 #include <cstring>
+#include <ctime>
 #include <unordered_map>
 #include <vector>
 
@@ -144,9 +148,14 @@ asio::ip::udp::socket& UdpTransport::Impl::open_socket() {
   if (ec) fail("cannot make the socket non-blocking for " + where, ec);
   // The kernel's count of datagrams it dropped because this socket's receive buffer was full
   // (a flood): given with every datagram read (recvmsg control data). Not fatal where missing.
-#ifdef SO_RXQ_OVFL
   const int on = 1;
+#ifdef SO_RXQ_OVFL
   (void)::setsockopt(s.native_handle(), SOL_SOCKET, SO_RXQ_OVFL, &on, sizeof on);
+#endif
+  // Each datagram's arrival time (the kernel's receive timestamp) with every datagram read.
+  // Not fatal where missing: the time of the read stands in (receive()).
+#ifdef SO_TIMESTAMPNS
+  (void)::setsockopt(s.native_handle(), SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof on);
 #endif
   // Each datagram's destination address (the group it was sent to) with every datagram read.
   const int pktinfo = 1;
@@ -270,7 +279,9 @@ std::optional<std::span<const std::uint8_t>> UdpTransport::receive(UdpSource& so
     const std::size_t i = (m.next_rx + k) % n_sockets;
     sockaddr_in from{};
     iovec iov{m.buffer.data(), m.buffer.size()};
-    alignas(cmsghdr) std::array<char, CMSG_SPACE(sizeof(std::uint32_t)) + CMSG_SPACE(sizeof(in_pktinfo))> control{};
+    alignas(cmsghdr) std::array<char, CMSG_SPACE(sizeof(std::uint32_t)) + CMSG_SPACE(sizeof(in_pktinfo)) +
+                                          CMSG_SPACE(sizeof(timespec))>
+        control{};
     msghdr msg{};
     msg.msg_name = &from;
     msg.msg_namelen = sizeof from;
@@ -286,7 +297,22 @@ std::optional<std::span<const std::uint8_t>> UdpTransport::receive(UdpSource& so
     }
     const auto n = static_cast<std::size_t>(got);
     source.destination = 0;
+    source.arrival_s = steady_now_s();  // the read, unless the kernel says when it came
+    source.kernel_time = false;
     for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c; c = CMSG_NXTHDR(&msg, c)) {
+#ifdef SO_TIMESTAMPNS
+      if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_TIMESTAMPNS) {
+        timespec stamp{}, wall{};
+        std::memcpy(&stamp, CMSG_DATA(c), sizeof stamp);
+        ::clock_gettime(CLOCK_REALTIME, &wall);
+        // Its age on the wall clock, onto the steady clock (a wall clock set back: age 0).
+        const double age = static_cast<double>(wall.tv_sec - stamp.tv_sec) +
+                           1e-9 * static_cast<double>(wall.tv_nsec - stamp.tv_nsec);
+        if (std::isfinite(age)) source.arrival_s -= std::max(0.0, age);
+        source.kernel_time = true;
+        continue;
+      }
+#endif
       if (c->cmsg_level == IPPROTO_IP && c->cmsg_type == IP_PKTINFO) {
         in_pktinfo info{};
         std::memcpy(&info, CMSG_DATA(c), sizeof info);
@@ -307,6 +333,10 @@ std::optional<std::span<const std::uint8_t>> UdpTransport::receive(UdpSource& so
     return std::span<const std::uint8_t>(m.buffer.data(), n);
   }
   return std::nullopt;
+}
+
+double steady_now_s() noexcept {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 std::uint64_t UdpTransport::dropped_by_kernel() const noexcept { return impl_->kernel_drops_total; }

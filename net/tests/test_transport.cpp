@@ -23,6 +23,13 @@ net::SessionConfig session_config(std::uint16_t port, std::uint8_t exercise, std
   return c;
 }
 
+// A transport on loopback multicast, group 239.1.2.3, this test's port.
+net::TransportConfig multicast_config(std::uint16_t port) {
+  net::TransportConfig c;
+  c.url = "udp://239.1.2.3:" + std::to_string(port);
+  return c;
+}
+
 // Polls `s` until `done()` or 2 s pass.
 template <class Visitor, class Done>
 void poll_until(net::Session& s, Visitor&& v, Done&& done) {
@@ -183,9 +190,7 @@ TEST(UdpTransport, UnicastToOurselvesOnLoopback) {
 
 TEST(UdpTransport, ReceiveFromGivesTheSendersAddressAndPort) {
   const std::uint16_t port = test_port(3);
-  net::TransportConfig c;
-  c.url = "udp://239.1.2.3:" + std::to_string(port);
-  net::UdpTransport rx(c), tx(c);
+  net::UdpTransport rx(multicast_config(port)), tx(multicast_config(port));
   const std::vector<std::uint8_t> msg = bytes_of(sample_collision());
   ASSERT_TRUE(tx.send(msg)) << tx.last_error();
   net::UdpSource from;
@@ -220,4 +225,48 @@ TEST(Session, OfflineCountsSendsAndHearsNothing) {
   EXPECT_EQ(s.parse(bytes_of(other), [&](const auto&) { ++n; }), 1u);
   EXPECT_EQ(s.parse(bytes_of(es), [&](const auto&) { ++n; }), 0u) << "our own echo";
   EXPECT_EQ(n, 1);
+}
+
+// Issue 11: a datagram is dated by its arrival (the kernel's receive timestamp, on the steady
+// clock), not by when it was read: read 20 ms after it was sent, it still says when it came.
+// Linux turns receive timestamps on a moment after the first socket of the host asks for them
+// (net_enable_timestamp defers it to a work item); until then it stamps a datagram when it is
+// read. So the first tries may carry their read time; within 2 s one must carry its arrival.
+TEST(UdpTransport, ADatagramCarriesItsArrivalTimeNotTheTimeItWasRead) {
+  const std::uint16_t port = test_port(2);
+  net::UdpTransport rx(multicast_config(port)), tx(multicast_config(port));
+  const std::vector<std::uint8_t> msg = bytes_of(sample_collision());
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  double before_send = 0, after_send = 0, read_from = 0;
+  net::UdpSource from;
+  do {
+    before_send = net::steady_now_s();
+    ASSERT_TRUE(tx.send(msg)) << tx.last_error();
+    after_send = net::steady_now_s();
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    read_from = net::steady_now_s();
+    std::optional<std::span<const std::uint8_t>> d;
+    while (!(d = rx.receive(from)) && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    ASSERT_TRUE(d);
+    EXPECT_EQ(std::vector<std::uint8_t>(d->begin(), d->end()), msg);
+  } while (from.arrival_s > read_from - 0.01 && std::chrono::steady_clock::now() < deadline);
+  EXPECT_TRUE(from.kernel_time) << "Linux gives SO_TIMESTAMPNS on loopback";
+  EXPECT_LT(from.arrival_s, read_from - 0.01) << "dated by the read, not the arrival";
+  // Loopback multicast is delivered within send(); 1 ms for moving the wall-clock stamp over.
+  EXPECT_GE(from.arrival_s, before_send - 1e-3);
+  EXPECT_LE(from.arrival_s, after_send + 1e-3);
+
+  // The next one through poll(): a later arrival, never after its read.
+  ASSERT_TRUE(tx.send(msg)) << tx.last_error();
+  double second = -1, read_at = 0;
+  while (second < 0 && std::chrono::steady_clock::now() < deadline + std::chrono::seconds(1)) {
+    rx.poll([&](std::span<const std::uint8_t>, double arrival_s) { second = arrival_s; });
+    read_at = net::steady_now_s();
+    if (second < 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  ASSERT_GE(second, 0);
+  EXPECT_GT(second, from.arrival_s);
+  EXPECT_GE(second, after_send - 1e-3);
+  EXPECT_LE(second, read_at);
 }

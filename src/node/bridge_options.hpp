@@ -33,6 +33,10 @@ struct BridgeOptions {
   // turns only those into ECEF; false: every vehicle's ECEF state every tick (the same PDUs,
   // slower: the reference of tests/node/test_dr_bound.cpp).
   bool dr_prefilter = true;
+  // The node ticks on the wall clock (run.cpp: every --net, --realtime or --window run): each
+  // datagram read from the socket is dated by its arrival (net_bridge.hpp, Receive). false
+  // (unpaced: tests, the fuzz target; a replay): by the start of the tick that reads it.
+  bool paced = false;
 };
 
 // Application ids at or above this carry cultural features (fixed objects).

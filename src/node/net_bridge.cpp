@@ -75,7 +75,7 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
   fixed_net_state_.assign(w.fixed.size(), -1);
   fixed_slot_.assign(w.fixed.size(), -1);
   for (size_t f = 0; f < w.fixed.size(); ++f) fixed_net_state_[f] = static_cast<int16_t>(w.fixed.state[f]);
-  start_s_ = now_s_ = clock_s();
+  start_s_ = now_s_ = polled_s_ = clock_s();
   pack_ = dis_pack_from_env();
 }
 
@@ -178,9 +178,12 @@ nlohmann::json NetBridge::event(const char* type) const {
 
 void NetBridge::receive(std::span<const std::uint8_t> datagram, double arrival_s) {
   const bool process = !frozen_ || (frozen_behavior_ & 4);  // a freeze may stop processing updates
-  // UTC dates absolute timestamps; a recording's clock is not now.
-  const double utc = source_ ? net::RemoteEntityTable::kNoUtc
-                             : std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  // UTC dates absolute timestamps: ours at arrival_s (as long before now on the bridge clock);
+  // a recording's clock is not now.
+  const double utc =
+      source_ ? net::RemoteEntityTable::kNoUtc
+              : std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count() -
+                    std::max(0.0, clock_s() - arrival_s);
   session_->parse(datagram, net::Overloaded{
                                 [&](const net::StopFreezePdu& p) { on_stop_freeze(p); },
                                 [&](const net::StartResumePdu& p) { on_start_resume(p); },
@@ -232,9 +235,21 @@ void NetBridge::before_step(world::World& w) {
   ownership_.clear();
   check_signal();
   if (aoi_) aoi_->update(w, own_, *session_);  // join / leave before draining the socket
-  session_->poll_datagrams([&](std::span<const std::uint8_t> d) { receive(d, now_s_); });
+  poll_socket();
   if (source_) source_(now_s_, *this);
   remotes_.mirror(now_s_);
+}
+
+void NetBridge::poll_socket() {
+  const double from = polled_s_;
+  polled_s_ = now_s_;
+  // Paced, the bridge clock is the steady clock the transport dates arrivals on: a datagram's
+  // time is its arrival, clamped to this poll's interval (one that came before the previous poll
+  // and was left waiting by a capped poll is dated at that poll). Unpaced: the tick's start.
+  const bool by_arrival = opt_.paced && !source_;
+  session_->poll_datagrams([&](std::span<const std::uint8_t> d, double arrival_s) {
+    receive(d, by_arrival ? std::clamp(arrival_s, std::min(from, now_s_), now_s_) : now_s_);
+  });
 }
 
 // ---------------------------------------------------------------- decide ----

@@ -20,6 +20,17 @@
 //    arrival_s is the bridge clock (steady seconds, clock_s()). set_source() replaces the socket
 //    by another source of datagrams (run --replay: a recording, node/replay_feed.hpp), called
 //    each tick with the bridge clock, which is then the scenario clock (world t, s).
+//  * Dating (issue 11): a received Entity State's relative timestamp gives its age past the least
+//    delayed one of its entity (net/remote_table.hpp), counted from arrival_s; the remote copy is
+//    dead-reckoned from there to the start of each tick (RemoteEntities::mirror(now)). Paced
+//    (BridgeOptions::paced: the tick runs on the wall clock), a datagram from the socket
+//    arrives at its own time: the transport's (the kernel's receive timestamp, net/transport.hpp,
+//    on the steady clock that is then the bridge clock), clamped to the interval since the
+//    previous poll. Dated instead with the start of the tick that read it (as before), a copy
+//    was a whole tick behind when its datagrams came just after the receiver's tick began, and
+//    right when just before: a few ms of tick phase between two nodes decided (issue 11, dr-error).
+//    Unpaced (tests, the fuzz target) the wall clock means nothing to the scenario: every
+//    datagram read in a tick is dated with that tick's start, as before.
 //  * Threading: the bridge runs on the tick's thread; the per-vehicle local-frame work of
 //    publishing (acceleration filter, yaw rate, the dead-reckoning bound of dr_bound.hpp) runs on
 //    the Simulation's worker threads (Simulation::jobs), each vehicle into its own slot; then, in
@@ -217,6 +228,8 @@ class NetBridge {
   void on_remove_entity(const net::RemoveEntityPdu& p);
   void flush_batch();
   void report_clash();
+  // Reads the socket into receive(), each datagram dated as the contract says (Receive).
+  void poll_socket();
   // The group a PDU about the local point p goes to (the --net destination without --aoi).
   std::uint32_t group_at(const Vec3& p) const { return aoi_ ? aoi_->group_at(p) : net::Session::kDestination; }
 
@@ -230,6 +243,7 @@ class NetBridge {
   Usr1Signal usr1_;
   std::uint16_t cultural_app_;
   double start_s_ = 0, now_s_ = 0;
+  double polled_s_ = 0;  // bridge clock of the last socket poll
   bool started_ = false;
   bool catching_up_ = false;
   double joined_t_ = -1;  // scenario time (s) this node joined a running exercise at; -1: from the start

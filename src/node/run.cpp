@@ -265,6 +265,7 @@ int run_command(const RunOptions& opt) {
   std::unique_ptr<NetBridge> bridge;
   if (net_on || replay_on) {
     try {
+      net_opt.paced = paced;
       bridge = std::make_unique<NetBridge>(net_opt, std::move(session), sim, log);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "npsnet: --net %s --iface %s: %s\n", o.net.c_str(), o.iface.c_str(), e.what());

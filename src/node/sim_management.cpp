@@ -131,7 +131,7 @@ bool NetBridge::frozen() {
 void NetBridge::idle() {
   now_s_ = clock_s();
   check_signal();
-  session_->poll_datagrams([&](std::span<const std::uint8_t> d) { receive(d, now_s_); });
+  poll_socket();
   if (frozen_behavior_ & kFrozenProcess) remotes_.mirror(now_s_, /*poses=*/false);
   if ((frozen_behavior_ & kFrozenTransmit) && now_s_ - frozen_hb_s_ >= remotes_.thresholds().heartbeat_s) {
     frozen_hb_s_ = now_s_;  // heartbeats: standing still, the Frozen Status bit set

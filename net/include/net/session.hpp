@@ -12,7 +12,8 @@
 //  * join_group / leave_group: the transport's join/leave, counted in counters().aoi_*.
 //  * poll(visitor) drains every waiting datagram without blocking and hands each accepted PDU to
 //    the visitor (see datagram.hpp for the visitor rules); returns the number of PDUs handed.
-//  * poll_datagrams(f) drains the waiting datagrams as raw bytes, f(std::span<const uint8_t>);
+//  * poll_datagrams(f) drains the waiting datagrams as raw bytes, f(std::span<const uint8_t>),
+//    or f(bytes, arrival_s) with each one's arrival time (steady clock, s; transport.hpp);
 //    parse(datagram, visitor) walks one datagram (from the socket, a recording or a test) through
 //    the session's filter and counters exactly as poll does.
 //  * Our own (site, application) in a received datagram: our echo when the datagram is one of

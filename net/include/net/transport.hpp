@@ -24,6 +24,12 @@
 //    destination (IP_PKTINFO: the group it was sent to, on whichever socket it arrived), so a
 //    recorder holding many groups writes each frame's true addresses into its pcap;
 //    native_handle(i) is socket i's descriptor, for poll(2) over every socket.
+//  * Arrival time (issue 11): every datagram read carries when it arrived, arrival_s on the
+//    steady clock (steady_now_s(): std::chrono::steady_clock, CLOCK_MONOTONIC, s): the kernel's
+//    receive timestamp (SO_TIMESTAMPNS, wall clock, moved onto the steady clock by its age at
+//    the read), or the time of the read where the kernel gives none (kernel_time false); never
+//    later than the read. A node that reads its socket once a tick dates a state with it, not
+//    with the read.
 #pragma once
 
 #include <cstddef>
@@ -33,6 +39,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 #include "net/result.hpp"
 
@@ -57,7 +64,12 @@ struct UdpSource {
   std::uint32_t address = 0;
   std::uint16_t port = 0;
   std::uint32_t destination = 0;  // the datagram's IPv4 destination address (IP_PKTINFO); 0 = unknown
+  double arrival_s = 0;      // steady clock (steady_now_s()), s: when the datagram arrived
+  bool kernel_time = false;  // arrival_s is the kernel's timestamp (else: the time it was read)
 };
+
+// The steady clock arrival times are on: std::chrono::steady_clock, seconds.
+double steady_now_s() noexcept;
 
 struct TransportConfig {
   std::string url{kDefaultNetUrl};
@@ -109,16 +121,21 @@ class UdpTransport {
   // The first socket's receive buffer as the kernel granted it (SO_RCVBUF read back), octets.
   int receive_buffer_bytes() const noexcept;
 
-  // Calls on_datagram(std::span<const std::uint8_t>) for each waiting datagram, at most
+  // Calls on_datagram(std::span<const std::uint8_t>) -- or on_datagram(span, double arrival_s)
+  // when it takes the arrival time too -- for each waiting datagram, at most
   // max_datagrams_per_poll; returns how many.
   template <class F>
   std::size_t poll(F&& on_datagram) {
     std::size_t n = 0;
+    UdpSource from;
     while (n < max_per_poll_) {
-      auto d = receive();
+      auto d = receive(from);
       if (!d) return n;
       ++n;
-      on_datagram(*d);
+      if constexpr (std::is_invocable_v<F&, std::span<const std::uint8_t>, double>)
+        on_datagram(*d, from.arrival_s);
+      else
+        on_datagram(*d);
     }
     ++polls_capped_;  // more may be waiting: left for the next poll (bounded work per tick)
     return n;
