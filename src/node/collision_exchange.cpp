@@ -1,7 +1,7 @@
 // Collisions across nodes (net_bridge.hpp "Collisions across nodes", collision_outcome.hpp,
 // repeat_ledger.hpp): the decider announces each one in a Collision PDU that states its outcome
-// and repeats it every heartbeat; the colliding entity's owner applies it once, third nodes record
-// it once.
+// and repeats it (repeat_ledger.hpp); the colliding entity's owner applies it once, third nodes
+// record it once, each when both entities are known here (a PDU waits for them one DIS timeout).
 #include <algorithm>
 #include <cmath>
 
@@ -24,6 +24,29 @@ Vec3 vv(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 }  // namespace
 
 void NetBridge::on_collision(const net::CollisionPdu& p, double arrival_s) {
+  if (try_collision(p, arrival_s) != CollisionWait::Waits) return;
+  const std::uint64_t key = repeat_key(p);
+  for (const auto& c : waiting_collisions_)
+    if (c.key == key) return;  // a repeat of one that waits already
+  if (waiting_collisions_.size() >= kMaxWaitingCollisions) {
+    waiting_collisions_.erase(waiting_collisions_.begin());  // the oldest gives up
+    ++collisions_given_up_;
+  }
+  waiting_collisions_.push_back({p, key, arrival_s});
+}
+
+void NetBridge::retry_waiting_collisions() {
+  if (waiting_collisions_.empty()) return;
+  const double timeout_s = remotes_.thresholds().timeout_s;
+  std::erase_if(waiting_collisions_, [&](const WaitingCollision& c) {
+    if (try_collision(c.pdu, now_s_) != CollisionWait::Waits) return true;  // applied, or a repeat now
+    if (now_s_ - c.first_s <= timeout_s) return false;
+    ++collisions_given_up_;
+    return true;
+  });
+}
+
+NetBridge::CollisionWait NetBridge::try_collision(const net::CollisionPdu& p, double arrival_s) {
   world::World& w = sim_.world();
   auto& ents = w.ents;
   // Issued by one of our vehicles and not our datagram: our earlier process's collision, which
@@ -37,10 +60,10 @@ void NetBridge::on_collision(const net::CollisionPdu& p, double arrival_s) {
   bool third = false;
   if (ours(mine_id)) {
     own = own_entity_of(mine_id);
-    if (own < 0) return;
+    if (own < 0) return CollisionWait::Done;  // our id, none of our vehicles
   } else {
     own = remotes_.index_of(mine_id);
-    if (own < 0 || !ents.active[own]) return;
+    if (own < 0 || !ents.active[own]) return CollisionWait::Waits;  // its Entity State may come
     third = true;
   }
   int other = remotes_.index_of(other_id);
@@ -51,15 +74,15 @@ void NetBridge::on_collision(const net::CollisionPdu& p, double arrival_s) {
   // applied without it (its node is dead too; a third node adopted the PDU).
   // (An NPSNET node's PDU: it states the outcome in octet 31.)
   const bool past = !third && (own_issuer || (p.padding != kOutcomeUnstated && dated_before_join(p.header.timestamp)));
-  if (past && other < 0 && w.t - std::max(0.0, joined_t_) < remotes_.thresholds().timeout_s) return;
-  if (!past && (other < 0 || !issuer)) return;
+  if (past && other < 0 && w.t - std::max(0.0, joined_t_) < remotes_.thresholds().timeout_s) return CollisionWait::Waits;
+  if (!past && (other < 0 || !issuer)) return CollisionWait::Waits;
   // Applied once, whoever repeats it; until both entities are known here a repeat can still come.
   // A collision issued by a scenario vehicle of another NPSNET node (or of ours) is kept for adoption.
   const bool adoptable = own_issuer || (other >= 0 ? ents.node[other] >= 1 : p.padding != kOutcomeUnstated);
-  if (!collisions_.received(p, arrival_s, adoptable, group_at(ents.pos[own]))) return;
+  if (!collisions_.received(p, arrival_s, adoptable, group_at(ents.pos[own]))) return CollisionWait::Done;
   if (past) {
     past_collision(own, other, outcome_of(p, issuer ? issuer->appearance : 0));
-    return;
+    return CollisionWait::Done;
   }
   const world::Result res = outcome_of(p, issuer->appearance);  // the PDU's own (collision_outcome.hpp)
   const auto& frame = w.terrain.frame();
@@ -115,6 +138,7 @@ void NetBridge::on_collision(const net::CollisionPdu& p, double arrival_s) {
   inject_.entities.push_back(mine);
   sim_.inject(inject_);
   inject_.clear();
+  return CollisionWait::Done;
 }
 
 void NetBridge::past_collision(int own, int other, world::Result res) {

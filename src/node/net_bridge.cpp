@@ -143,6 +143,8 @@ std::string NetBridge::summary() const {
     r += "\n  net: collisions kept " + std::to_string(collisions_.kept()) + " (repeated " +
          std::to_string(collisions_.repeats_sent()) + " times); repeats received and ignored " +
          std::to_string(collisions_.repeats_ignored()) + "; adopted " + std::to_string(collisions_.adoptions());
+  if (collisions_given_up_)
+    r += "\n  net: " + std::to_string(collisions_given_up_) + " Collision PDUs gave up waiting for an entity (a DIS timeout)";
   if (dropped_detonations_)
     r += "\n  net: test hook NPSNET_TEST_DROP_DETONATIONS_S dropped " + std::to_string(dropped_detonations_) +
          " received Detonation PDUs";
@@ -237,6 +239,7 @@ void NetBridge::before_step(world::World& w) {
   if (aoi_) aoi_->update(w, own_, *session_);  // join / leave before draining the socket
   poll_socket();
   if (source_) source_(now_s_, *this);
+  retry_waiting_collisions();  // after this tick's Entity States: an entity may have appeared
   remotes_.mirror(now_s_);
 }
 

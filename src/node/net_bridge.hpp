@@ -203,7 +203,15 @@ class NetBridge {
   nlohmann::json event(const char* type) const;
 
   void on_cultural(const net::EntityStatePdu& p);
+  // A Collision PDU received: applied (try_collision) at once, or, when an entity it names is
+  // not known here yet (its first Entity State lost or still to come: a late joiner, a partition),
+  // kept in waiting_collisions_ and tried again each tick (retry_waiting_collisions) for one DIS
+  // timeout from its arrival; so it applies the tick the entity appears, not a heartbeat later
+  // at the next repeat (and not never, when the repeats stopped: the issuer dead, nobody adopting).
   void on_collision(const net::CollisionPdu& p, double arrival_s);
+  enum class CollisionWait { Done, Waits };
+  CollisionWait try_collision(const net::CollisionPdu& p, double arrival_s);
+  void retry_waiting_collisions();
   // Whether a PDU's relative timestamp (an NPSNET node's: scenario time, s past the hour) is
   // before the scenario time this node joined a running exercise at (never when it did not join;
   // a PDU more than 30 min older than the join reads as newer: timestamps wrap at the hour).
@@ -292,6 +300,14 @@ class NetBridge {
   std::unordered_map<int, std::uint16_t> fire_event_;  // munition index -> event number
   DetonationLedger detonations_;  // ours repeated every heartbeat; received ones applied once
   CollisionLedger collisions_;    // the same for Collision PDUs
+  struct WaitingCollision {
+    net::CollisionPdu pdu;
+    std::uint64_t key;  // repeat_key(pdu)
+    double first_s;     // bridge time it first arrived
+  };
+  static constexpr std::size_t kMaxWaitingCollisions = 256;  // past it the oldest gives up
+  std::vector<WaitingCollision> waiting_collisions_;
+  std::uint64_t collisions_given_up_ = 0;  // waited a DIS timeout, or pushed out by the cap
   double drop_detonations_s_ = 0;  // test hook NPSNET_TEST_DROP_DETONATIONS_S (bridge_options.hpp)
   std::uint64_t dropped_detonations_ = 0;
   std::uint16_t event_number_ = 0;

@@ -1,5 +1,6 @@
 #include "node/repeat_ledger.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace npsnet::node {
@@ -59,13 +60,13 @@ template <class Pdu>
 void RepeatLedger<Pdu>::keep(const Pdu& p, std::uint32_t group, double now_s, std::uint64_t key,
                             Role role) {
   if (kept_.size() < kMaxKept) {
-    kept_.push_back({p, group, now_s, key, role});
+    kept_.push_back({p, group, now_s, key, role, role == Role::Own ? std::uint8_t(kQuickRepeats) : std::uint8_t(0)});
     seen_[key] = static_cast<std::int32_t>(kept_.size() - 1);
     return;
   }
   auto old = seen_.find(kept_[oldest_].key);  // the oldest stops being repeated
   if (old != seen_.end() && old->second == static_cast<std::int32_t>(oldest_)) old->second = -1;
-  kept_[oldest_] = {p, group, now_s, key, role};
+  kept_[oldest_] = {p, group, now_s, key, role, role == Role::Own ? std::uint8_t(kQuickRepeats) : std::uint8_t(0)};
   seen_[key] = static_cast<std::int32_t>(oldest_);
   oldest_ = (oldest_ + 1) % kMaxKept;
   ++dropped_kept_;
@@ -113,7 +114,11 @@ void RepeatLedger<Pdu>::resend_due(double now_s, double heartbeat_s, double live
                                   const std::function<void(const Pdu&, std::uint32_t)>& resend) {
   for (auto& k : kept_) {
     const double quiet = now_s - k.last_s;
-    if (quiet < heartbeat_s) continue;
+    if (k.quick > 0 && quiet >= std::min(kQuickGapS, heartbeat_s)) {
+      --k.quick;
+    } else if (quiet < heartbeat_s) {
+      continue;
+    }
     if (k.role == Role::Held) {
       if (quiet < heartbeat_s * (2 + rank(originator(k.pdu), now_s, live_s))) continue;
       k.role = Role::Adopted;

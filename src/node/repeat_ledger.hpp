@@ -7,6 +7,10 @@
 // issuing entity of a Collision.
 //  * Sent: the originating node keeps each such PDU it sent and sends it again every heartbeat
 //    (Annex C: 5 s), so a node that lost it, or joined later, gets it within one heartbeat.
+//    The first kQuickRepeats repeats go kQuickGapS apart (at most a heartbeat), as a first Entity
+//    State's do (vehicle_publish.cpp): a lost datagram heals in half a second, and a node killed
+//    a second after its round fell has sent it three times, not once (nobody holds a PDU that
+//    was lost on every link, so nobody could adopt it).
 //  * Received: a PDU is applied once. Its key is the originating entity, the event id and the
 //    place to the centimetre (a Detonation's location; a Collision's colliding entity and
 //    location in the issuer's coordinates): a node restarted with the same site and application
@@ -52,6 +56,8 @@ class RepeatLedger {
   static constexpr std::size_t kMaxKept = 4096;
   static constexpr std::size_t kMaxSeen = 65536;
   static constexpr std::size_t kMaxPeers = 1024;
+  static constexpr int kQuickRepeats = 2;
+  static constexpr double kQuickGapS = 0.5;
 
   // Our own (site, application): ranks are counted against it.
   void set_identity(std::uint16_t site, std::uint16_t application) { site_ = site, app_ = application; }
@@ -85,6 +91,7 @@ class RepeatLedger {
     double last_s;  // last sent by us or heard from anyone
     std::uint64_t key;
     Role role;
+    std::uint8_t quick;  // Own: quick repeats still to send (kQuickGapS apart)
   };
   struct Peer {
     std::uint32_t id;  // site << 16 | application

@@ -1,13 +1,14 @@
 // Rounds of a killed node (issue 11, node/repeat_ledger.hpp "Adoption"): three nodes on
 // loopback multicast (--iface 127.0.0.1, a random port, a common --start-at). Node 1's player
 // fires two unscripted rounds (--input, t = 1 s and 2 s) at the slope of ridge.asc; node 3 loses
-// both Detonations (test hook NPSNET_TEST_DROP_DETONATIONS_S=4); node 1 is SIGKILLed at t = 3 s,
-// before its first repeat (t ~ 6 s). Nobody else fired them, so without adoption node 3 never
+// both Detonations and their quick repeats (0.5 s apart; test hook NPSNET_TEST_DROP_DETONATIONS_S=4);
+// node 1 is SIGKILLed at t = 3 s, before its first heartbeat repeat. Nobody else fired them, so without adoption node 3 never
 // gets these craters. With it node 2 (the lowest live node holding them, rank 0) adopts each 2
 // heartbeats (10 s) after it last heard it and repeats it: node 3 must have both craters, at the
 // same points as node 2, within one heartbeat after that, and no node has a crater twice.
 #include <gtest/gtest.h>
 
+#include <regex>
 #include <thread>
 
 #include "lan_support.hpp"
@@ -56,14 +57,19 @@ TEST(Adoption, RoundsOfAKilledNodeReachTheNodeThatLostThem) {
     SCOPED_TRACE("round " + std::to_string(k + 1));
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(c3[k]["point"][i].get<double>(), c2[k]["point"][i].get<double>(), 0.01);
     EXPECT_LT(c2[k]["t"].get<double>(), 3.0);  // node 2 heard the original
-    // Adoption 2 heartbeats after node 2 last heard it (the original: node 1 never repeated it).
+    // Adoption 2 heartbeats after node 2 last heard it (the original or a quick repeat, at most
+    // 2 x 0.5 s later: node 1 died before its heartbeat repeat).
     const double adopt = c2[k]["t"].get<double>() + 2 * kHeartbeatS;
     EXPECT_GE(c3[k]["t"].get<double>(), adopt - 0.5);
-    EXPECT_LE(c3[k]["t"].get<double>(), adopt + kHeartbeatS);
+    EXPECT_LE(c3[k]["t"].get<double>(), adopt + 1.0 + kHeartbeatS);
   }
   const std::string out2 = lan::read_text(dir / "out_2.txt"), out3 = lan::read_text(dir / "out_3.txt");
   EXPECT_NE(out2.find("adopted 2 of silent nodes"), std::string::npos) << out2;
   EXPECT_NE(out3.find("adopted 0 of silent nodes"), std::string::npos) << out3;  // node 2 repeats them: 3 only watches
-  EXPECT_NE(out3.find("NPSNET_TEST_DROP_DETONATIONS_S dropped 2 "), std::string::npos) << out3;
+  // The two originals and the quick repeats node 1 sent before it died (up to 2 each).
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(out3, m, std::regex(R"(NPSNET_TEST_DROP_DETONATIONS_S dropped (\d+) )"))) << out3;
+  EXPECT_GE(std::stoi(m[1]), 2);
+  EXPECT_LE(std::stoi(m[1]), 6);
   std::filesystem::remove_all(dir);
 }

@@ -4,8 +4,9 @@
 // copy of each Collision PDU (keyed by issuing entity, colliding entity and event id): the
 // original never reaches node 2. Node 1 decides both cross-node collisions (t1/a2 broadside:
 // kill; t1b/a2b shallow: bounce; t1 and t1b have the lower DIS ids); node 2 learns them only from
-// node 1's repeats (every heartbeat: 2 s with NPSNET_DIS_TIMEOUT_S=4.8). Both event logs must
-// then hold the same collisions with the same outcomes, each once, node 2's a heartbeat late.
+// node 1's repeats (twice 0.5 s apart, then every heartbeat: 2 s with NPSNET_DIS_TIMEOUT_S=4.8).
+// Both event logs must then hold the same collisions with the same outcomes, each once, node 2's
+// from the first quick repeat, about 0.5 s late.
 // Without the repeat (collisions_.resend_due in node/collision_exchange.cpp) node 2 never logs
 // them: this test fails.
 #include <arpa/inet.h>
@@ -24,11 +25,11 @@
 #include <vector>
 
 #include "lan_support.hpp"
+#include "node/repeat_ledger.hpp"
 
 namespace {
 
 using nlohmann::json;
-constexpr double kHeartbeatS = 4.8 * 5.0 / 12.0;  // NPSNET_DIS_TIMEOUT_S=4.8 (bridge_options.hpp)
 constexpr std::uint8_t kCollisionPduType = 4;      // DIS header octet 2
 
 // A socket on 239.1.2.3:port joined on 127.0.0.1 (receive), or an unbound sender (port 0).
@@ -153,9 +154,10 @@ TEST(CollisionDrop, FirstCollisionPdusLostBetweenTwoProcessesHealThroughTheRepea
     EXPECT_EQ(std::get<0>(c2[i]), std::get<0>(c1[i]));
     EXPECT_EQ(std::get<1>(c2[i]), std::get<1>(c1[i])) << "outcome_a";
     EXPECT_EQ(std::get<2>(c2[i]), std::get<2>(c1[i])) << "outcome_b";
-    // Node 2 has it from the first repeat, a heartbeat after node 1 decided it.
-    EXPECT_GE(std::get<3>(c2[i]), std::get<3>(c1[i]) + kHeartbeatS - 0.5);
-    EXPECT_LE(std::get<3>(c2[i]), std::get<3>(c1[i]) + kHeartbeatS + 1.0);
+    // Node 2 has it from the first quick repeat, kQuickGapS after node 1 decided it.
+    const double gap = npsnet::node::CollisionLedger::kQuickGapS;
+    EXPECT_GE(std::get<3>(c2[i]), std::get<3>(c1[i]) + gap - 0.15);
+    EXPECT_LE(std::get<3>(c2[i]), std::get<3>(c1[i]) + gap + 1.0);
   }
   EXPECT_EQ(std::get<1>(c1[0]) == "kill" || std::get<2>(c1[0]) == "kill", true) << "t1/a2 broadside: kill";
   // Node 2's APC a2 is a wreck on node 2, once (its owner applies the stated outcome).

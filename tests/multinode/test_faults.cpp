@@ -40,8 +40,9 @@ TEST(Faults, FourNodesAgreeAfterLossPartitionKillAndLateJoin) {
   if (rc == 77) GTEST_SKIP() << out;
   ASSERT_EQ(rc, 0) << out;
   // The script compares every node's collisions across nodes (pairs, outcome_a, outcome_b) with
-  // node 1's and prints node 1's: the kill of t1 and a2, once.
-  const std::string kKill = "collisions across nodes: [('a2', 't1', 'kill', 'kill')]";
+  // node 1's and prints node 1's: the kills of t1 and a2 and of b3 (node 3, killed and restarted
+  // later) and k1, once each.
+  const std::string kKill = "collisions across nodes: [('a2', 't1', 'kill', 'kill'), ('b3', 'k1', 'kill', 'kill')]";
   EXPECT_NE(out.find(kKill), std::string::npos) << out;
   const auto faulty = lan::fresh_dir("faults");
   rc = run_script(procs, faulty, {}, out);

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <functional>
+#include <vector>
 
 #include "node/repeat_ledger.hpp"
 
@@ -107,13 +108,33 @@ TEST(DetonationLedger, RoundsOfOtherSimulatorsAreNeverRepeated) {
   EXPECT_EQ(b.kept(), 0u);
 }
 
-TEST(DetonationLedger, OwnRoundsRepeatEachHeartbeat) {
+TEST(DetonationLedger, OwnRoundsRepeatTwiceQuicklyThenEachHeartbeat) {
   DetonationLedger a;
   a.set_identity(1, 1);
-  Sends s;
+  std::vector<double> at;
   a.sent(round_of(1, 1), 0, 0.0);
-  for (double t = 0; t <= 20.55; t += 0.1) a.resend_due(t, kHb, kLive, s.f());
-  EXPECT_EQ(s.n, 4);  // t ~ 5, 10, 15, 20
-  EXPECT_EQ(a.repeats_sent(), 4u);
+  for (int tick = 0; tick <= 205; ++tick) {
+    const double t = tick * 0.1;
+    a.resend_due(t, kHb, kLive, [&](const net::DetonationPdu&, std::uint32_t) { at.push_back(t); });
+  }
+  // Two quick repeats kQuickGapS apart, then a heartbeat after the last sending: t ~ 0.5, 1.0, 6, 11, 16.
+  const std::vector<double> want = {0.5, 1.0, 6.0, 11.0, 16.0};
+  ASSERT_EQ(at.size(), want.size());
+  for (size_t i = 0; i < want.size(); ++i) EXPECT_NEAR(at[i], want[i], 0.11) << i;
+  EXPECT_EQ(a.repeats_sent(), 5u);
   EXPECT_FALSE(a.received(round_of(1, 1), 21.0, true, 0));  // an adopter's repeat of ours: not new
+}
+
+TEST(DetonationLedger, QuickRepeatsNeverComeSlowerThanTheHeartbeat) {
+  DetonationLedger a;  // a heartbeat shorter than kQuickGapS (a test's short DIS timeout)
+  a.set_identity(1, 1);
+  std::vector<double> at;
+  a.sent(round_of(1, 1), 0, 0.0);
+  for (int tick = 0; tick <= 10; ++tick) {
+    const double t = tick * 0.1;
+    a.resend_due(t, 0.3, 0.72, [&](const net::DetonationPdu&, std::uint32_t) { at.push_back(t); });
+  }
+  const std::vector<double> want = {0.3, 0.6, 0.9};
+  ASSERT_EQ(at.size(), want.size());
+  for (size_t i = 0; i < want.size(); ++i) EXPECT_NEAR(at[i], want[i], 0.11) << i;
 }
