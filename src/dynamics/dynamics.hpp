@@ -29,9 +29,22 @@ struct GroundImpact {
   Vec3 point{0, 0, 0};
 };
 
+// heading_to_dir of each entity's stored (float) heading, kept by step from tick to tick while
+// that float keeps its bits. A vehicle on a straight leg turns its double heading by less than
+// a float step, so its stored heading stays the same float: terrain following then takes the
+// direction from here instead of a sin and cos (and so does the step of a vehicle whose heading
+// is that float). The entry is a function of the float's bits only: whatever entity a slot
+// later holds, a matching key gives the same bits as the sin and cos.
+struct HeadingDirs {
+  std::vector<uint64_t> key;  // (1 << 32) | the float's bits; 0 = none
+  std::vector<Vec2> dir;      // heading_to_dir(that float)
+};
+
 // Moves every local active entity by dt. Appends munitions that met the terrain to `impacts`
 // (in index order). `jobs`: worker threads for the vehicles (nullptr: this thread only).
-void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::Jobs* jobs = nullptr);
+// `memo`: the caller's HeadingDirs, kept between calls (nullptr: none; the same bits either way).
+void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::Jobs* jobs = nullptr,
+          HeadingDirs* memo = nullptr);
 
 // Terrain following for a ground vehicle at its current (x, y): sets z, pitch and roll from the
 // terrain under the corners of its footprint (the intact model's extent).

@@ -1,5 +1,7 @@
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <utility>
 #include <cmath>
 
@@ -31,7 +33,13 @@ double turn_towards(double heading, double wanted, double max_step) {
   return wrap360(heading + std::clamp(d, -max_step, max_step));
 }
 
-void step_vehicle(world::World& w, int e, double dt) {
+// The memo's key for heading h when h is a float (its bits, sign included), else 0 (no entry).
+uint64_t heading_key(double h) {
+  const float f = static_cast<float>(h);
+  return static_cast<double>(f) == h ? (uint64_t{1} << 32) | std::bit_cast<uint32_t>(f) : 0;
+}
+
+void step_vehicle(world::World& w, int e, double dt, HeadingDirs* memo) {
   auto& ents = w.ents;
   const world::Kind& k = w.kinds[ents.kind[e]];
   const bool dead = ents.state[e] + 1 >= static_cast<int>(k.states.size());
@@ -56,7 +64,9 @@ void step_vehicle(world::World& w, int e, double dt) {
     }
     if (to.norm() > 1e-6) heading = turn_towards(heading, dir_to_heading(to), turn_rate_dps(k.mobility) * dt);
   }
-  const Vec2 d = heading_to_dir(heading);
+  // The direction of the heading: the memo's when the heading is the stored float it keeps.
+  const uint64_t d_key = memo ? heading_key(heading) : 0;
+  const Vec2 d = d_key != 0 && memo->key[e] == d_key ? memo->dir[e] : heading_to_dir(heading);
   const double d_heading = heading;  // the heading d points along
   Vec3 next = ents.pos[e] + Vec3(d.x(), d.y(), 0) * (speed * dt);
   next.x() = std::clamp(next.x(), 0.0, w.terrain.width_m());
@@ -84,9 +94,15 @@ void step_vehicle(world::World& w, int e, double dt) {
   ents.pos[e] = next;
   ents.heading_deg[e] = static_cast<float>(heading);
   // Terrain following needs the direction of the stored (float) heading: d when the heading is
-  // that float (no turn, or a turn to a float), else its own sin and cos.
-  if (k.mobility == Mobility::Ground)
-    follow_terrain_along(w, e, static_cast<double>(ents.heading_deg[e]) == d_heading ? d : heading_to_dir(ents.heading_deg[e]));
+  // that float (no turn, or a turn to a float), else the memo's when it holds that float, else
+  // its own sin and cos.
+  if (k.mobility == Mobility::Ground) {
+    const double stored = ents.heading_deg[e];
+    const uint64_t key = memo ? heading_key(stored) : 0;
+    const Vec2 f = stored == d_heading ? d : key != 0 && memo->key[e] == key ? memo->dir[e] : heading_to_dir(stored);
+    if (memo) memo->key[e] = key, memo->dir[e] = f;
+    follow_terrain_along(w, e, f);
+  }
   if (k.mobility == Mobility::Ship || k.mobility == Mobility::Air) ents.pitch_deg[e] = ents.roll_deg[e] = 0;
   burn_fuel(w, e, speed, dt);
 }
@@ -177,9 +193,10 @@ void follow_terrain_along(world::World& w, int e, const Vec2& f) {
   ents.roll_deg[e] = atan2_deg_float(hl - hr, 2 * half_wid);  // right side down +
 }
 
-void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::Jobs* jobs) {
+void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::Jobs* jobs, HeadingDirs* memo) {
   auto& ents = w.ents;
   const size_t n = ents.size();
+  if (memo && memo->key.size() < n) memo->key.resize(n, 0), memo->dir.resize(n);
   // A player drives its vehicle (drive.hpp); munitions come second, below.
   auto moves = [&](size_t e) { return ents.active[e] && ents.local[e] && !ents.driven[e]; };
   // Each range also notes the span of its munitions, so that the munitions' pass (on this thread,
@@ -189,7 +206,7 @@ void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::
   auto vehicles = [&](int c, size_t e0, size_t e1) {
     for (size_t e = e0; e < e1; ++e) {
       if (!moves(e)) continue;
-      if (w.kinds[ents.kind[e]].mobility != Mobility::Munition) step_vehicle(w, static_cast<int>(e), dt);
+      if (w.kinds[ents.kind[e]].mobility != Mobility::Munition) step_vehicle(w, static_cast<int>(e), dt, memo);
       else span[c] = {std::min(span[c].first, e), e + 1};
     }
   };

@@ -212,7 +212,7 @@ void Simulation::tick() {
   if (before_step) before_step(w_);
   scheduled_fires();
   if (before_dynamics) before_dynamics();
-  dynamics::step(w_, dt_, impacts_, jobs_.get());
+  dynamics::step(w_, dt_, impacts_, jobs_.get(), &heading_dirs_);
   if (driven_ >= 0 && w_.ents.driven[driven_] && w_.ents.local[driven_]) dynamics::drive(w_, driven_, controls, dt_, crashes_);
   if (before_detect) before_detect(w_);
   detector_.detect(w_, contacts_);

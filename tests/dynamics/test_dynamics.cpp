@@ -1,6 +1,11 @@
 // Dynamics: speed limits, waypoints, terrain following, ballistic and guided munitions, dt range.
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cstring>
+#include <random>
+#include <string>
+
 #include "dynamics/autonomous.hpp"
 #include "dynamics/dynamics.hpp"
 #include "support/fixture.hpp"
@@ -134,4 +139,66 @@ TEST(Vehicles, AircraftHoldAltitudeAboveTerrain) {
   for (int i = 0; i < 80; ++i) dynamics::step(w, 0.1, imp);  // 1.6 km east: ground rises 80 m
   EXPECT_DOUBLE_EQ(w.ents.pos[a].z(), 300.0);
   EXPECT_GT(w.ents.pos[a].x(), 1500);
+}
+
+namespace {
+// A hilly world (posts vary in both directions: vehicles pitch and roll) with a crowd of ground
+// vehicles on looping routes, some on none (a fixed heading), some parked; seeded.
+world::World hilly_crowd(uint32_t seed) {
+  auto w = test::flat_world();
+  const int n = w.terrain.cols();
+  std::vector<float> h(static_cast<size_t>(n) * n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      h[static_cast<size_t>(j) * n + i] = static_cast<float>(100 + 8 * std::sin(i * 0.37) * std::cos(j * 0.23) + 0.05 * i);
+  w.terrain = world::Terrain(n, n, 10.0, std::move(h), {35.98, -121.25, 0});
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> xy(100, 1900), hd(0, 360), sp(0, 15);
+  const char* kinds[] = {"m1a1", "bmp", "hmmwv"};
+  for (int v = 0; v < 60; ++v) {
+    const double heading = v % 7 == 0 ? 0.0 : v % 11 == 0 ? 270.0 : hd(rng);
+    const int e = test::add_vehicle(w, "v" + std::to_string(v), kinds[v % 3], xy(rng), xy(rng), heading, v % 13 == 0 ? 0.0 : sp(rng));
+    if (v % 5 != 0) {  // a looping route of 3 to 5 waypoints; every fifth vehicle holds its heading
+      for (int k = 0; k < 3 + v % 3; ++k) w.ents.route[e].push_back(Vec2(xy(rng), xy(rng)));
+      w.ents.loop_route[e] = 1;
+    }
+  }
+  return w;
+}
+
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+void expect_same_state(const world::World& a, const world::World& b, int tick) {
+  ASSERT_TRUE(same_bits(a.ents.pos, b.ents.pos)) << "tick " << tick;
+  ASSERT_TRUE(same_bits(a.ents.vel, b.ents.vel)) << "tick " << tick;
+  ASSERT_TRUE(same_bits(a.ents.heading_deg, b.ents.heading_deg)) << "tick " << tick;
+  ASSERT_TRUE(same_bits(a.ents.pitch_deg, b.ents.pitch_deg)) << "tick " << tick;
+  ASSERT_TRUE(same_bits(a.ents.roll_deg, b.ents.roll_deg)) << "tick " << tick;
+  ASSERT_TRUE(same_bits(a.ents.leg, b.ents.leg)) << "tick " << tick;
+}
+}  // namespace
+
+TEST(HeadingDirs, KeptDirectionsGiveTheBitsOfTheSinAndCos) {
+  // The same crowd stepped without and with the memo: the same bits every tick; then the memo,
+  // full of the first crowd's entries, serves another crowd in the same slots: still the same.
+  dynamics::HeadingDirs memo;
+  for (uint32_t seed : {7u, 8u}) {
+    auto plain = hilly_crowd(seed), kept = hilly_crowd(seed);
+    std::vector<dynamics::GroundImpact> imp;
+    for (int t = 0; t < 600; ++t) {
+      dynamics::step(plain, 1.0 / 60, imp);
+      dynamics::step(kept, 1.0 / 60, imp, nullptr, &memo);
+      expect_same_state(plain, kept, t);
+      if (HasFatalFailure()) return;
+    }
+    // The memo holds the stored heading's direction of every moving ground vehicle, bit for bit.
+    for (size_t e = 0; e < kept.ents.size(); ++e) {
+      ASSERT_EQ(memo.key[e], (uint64_t{1} << 32) | std::bit_cast<uint32_t>(kept.ents.heading_deg[e])) << e;
+      const Vec2 d = heading_to_dir(kept.ents.heading_deg[e]);
+      EXPECT_EQ(std::bit_cast<uint64_t>(memo.dir[e].x()), std::bit_cast<uint64_t>(d.x())) << e;
+      EXPECT_EQ(std::bit_cast<uint64_t>(memo.dir[e].y()), std::bit_cast<uint64_t>(d.y())) << e;
+    }
+  }
 }
