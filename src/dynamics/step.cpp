@@ -39,7 +39,8 @@ uint64_t heading_key(double h) {
   return static_cast<double>(f) == h ? (uint64_t{1} << 32) | std::bit_cast<uint32_t>(f) : 0;
 }
 
-void step_vehicle(world::World& w, int e, double dt, HeadingDirs* memo) {
+// flatten: the terrain lookups (Terrain::height, is_water) and terrain following inline here.
+[[gnu::flatten]] void step_vehicle(world::World& w, int e, double dt, HeadingDirs* memo) {
   auto& ents = w.ents;
   const world::Kind& k = w.kinds[ents.kind[e]];
   const bool dead = ents.state[e] + 1 >= static_cast<int>(k.states.size());
