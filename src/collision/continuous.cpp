@@ -380,9 +380,10 @@ void Detector::detect_continuous(const world::World& w) {
   // One pass over the entities, in ranges on the pool: each entity's sweep and swept box, then
   // its fixed-object tests into its range's lane (check_finite first: the pool rethrows the
   // lowest range's error, so the first bad entity in index order is named, as on one thread).
+  // (flatten: check_finite, centre_end and fixed_contacts with its grid query inline into this loop.)
   if (jobs_) lane(jobs_->threads() - 1);
   else lane(0);
-  merge_lanes(chunked(jobs_, m, kEntityGrain, [&](int c, size_t i0, size_t i1) {
+  merge_lanes(chunked(jobs_, m, kEntityGrain, [&](int c, size_t i0, size_t i1) __attribute__((flatten)) {
     for (size_t i = i0; i < i1; ++i) {
       const int e = static_cast<int>(order_[i]);
       check_finite(ents, e);
