@@ -99,15 +99,6 @@ void drive_air(world::World& w, int e, const Controls& c, double dt, bool has_fu
 
 }  // namespace
 
-bool burn_fuel(world::World& w, int e, double speed_mps, double dt) {
-  const world::Kind& k = w.kinds[w.ents.kind[e]];
-  if (k.fuel_l <= 0) return true;
-  const double limit = std::max(1e-6, static_cast<double>(w.ents.max_mps[e]));
-  const double litres = k.fuel_lph * std::min(1.0, speed_mps / limit) * dt / 3600.0;
-  w.ents.fuel_l[e] = static_cast<float>(std::max(0.0, w.ents.fuel_l[e] - litres));
-  return w.ents.fuel_l[e] > 0;
-}
-
 void drive(world::World& w, int e, const Controls& c, double dt, std::vector<Crash>& crashes) {
   auto& ents = w.ents;
   const world::Kind& k = w.kinds[ents.kind[e]];

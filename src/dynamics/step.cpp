@@ -173,6 +173,16 @@ void step_munition(world::World& w, int e, double dt, std::vector<GroundImpact>&
 
 }  // namespace
 
+// (defined here, beside step_vehicle, so that its flatten inlines it; drive.cpp calls it too)
+bool burn_fuel(world::World& w, int e, double speed_mps, double dt) {
+  const world::Kind& k = w.kinds[w.ents.kind[e]];
+  if (k.fuel_l <= 0) return true;
+  const double limit = std::max(1e-6, static_cast<double>(w.ents.max_mps[e]));
+  const double litres = k.fuel_lph * std::min(1.0, speed_mps / limit) * dt / 3600.0;
+  w.ents.fuel_l[e] = static_cast<float>(std::max(0.0, w.ents.fuel_l[e] - litres));
+  return w.ents.fuel_l[e] > 0;
+}
+
 void follow_terrain(world::World& w, int e) { follow_terrain_along(w, e, heading_to_dir(w.ents.heading_deg[e])); }
 
 void follow_terrain_along(world::World& w, int e, const Vec2& f) {
