@@ -93,7 +93,7 @@ void NetBridge::set_source(DatagramSource source) {
 
 double NetBridge::clock_s() const {
   if (source_) return sim_.world().t;
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  return net::steady_now_s();  // the clock the transport dates arrivals on (poll_socket)
 }
 
 void NetBridge::attach() {

@@ -59,14 +59,15 @@ int RepeatLedger<Pdu>::rank(const net::EntityId& origin, double now_s, double li
 template <class Pdu>
 void RepeatLedger<Pdu>::keep(const Pdu& p, std::uint32_t group, double now_s, std::uint64_t key,
                             Role role) {
+  const Kept k{p, group, now_s, key, role, role == Role::Own ? std::uint8_t(kQuickRepeats) : std::uint8_t(0)};
   if (kept_.size() < kMaxKept) {
-    kept_.push_back({p, group, now_s, key, role, role == Role::Own ? std::uint8_t(kQuickRepeats) : std::uint8_t(0)});
+    kept_.push_back(k);
     seen_[key] = static_cast<std::int32_t>(kept_.size() - 1);
     return;
   }
   auto old = seen_.find(kept_[oldest_].key);  // the oldest stops being repeated
   if (old != seen_.end() && old->second == static_cast<std::int32_t>(oldest_)) old->second = -1;
-  kept_[oldest_] = {p, group, now_s, key, role, role == Role::Own ? std::uint8_t(kQuickRepeats) : std::uint8_t(0)};
+  kept_[oldest_] = k;
   seen_[key] = static_cast<std::int32_t>(oldest_);
   oldest_ = (oldest_ + 1) % kMaxKept;
   ++dropped_kept_;

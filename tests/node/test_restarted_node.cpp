@@ -39,10 +39,6 @@ int count(const std::vector<nlohmann::json>& ev, const std::string& type, const 
   return n;
 }
 
-int destroyed(const test::WiredNode& n, const std::string& id) {
-  return static_cast<int>(n.world().kinds[n.world().ents.kind[n.index(id)]].states.size()) - 1;
-}
-
 // Runs lan.toml with node `restarted` killed at kKillAt and restarted kDeadFor ticks later.
 void kill_and_restart(test::Wire& wire, int restarted) {
   wire.run(kKillAt);
@@ -63,13 +59,13 @@ TEST(RestartedNode, AnAdoptedCollisionOfItsOwnVehicleIsDeliveredAndApplied) {
   EXPECT_EQ(n1.bridge->counters().own_id_clash, 0u) << "node 2's adopted repeat of our Collision PDU is no clash";
   EXPECT_EQ(count(ev, "id_clash"), 0);
   const int t1 = n1.index("t1");
-  EXPECT_EQ(n1.world().ents.state[t1], destroyed(n1, "t1")) << "t1 was killed in that collision before the restart";
+  EXPECT_EQ(n1.world().ents.state[t1], test::destroyed(n1, "t1")) << "t1 was killed in that collision before the restart";
   EXPECT_EQ(n1.world().ents.vel[t1], Vec3::Zero());
   EXPECT_EQ(count(ev, "collision", "t1/a2"), 1) << "applied once, though node 2 repeats it every heartbeat";
   EXPECT_EQ(count(ev, "collision", "t1b/a2b"), 1) << "the bounce of t1b is recorded once";
   // Node 2 sees t1 destroyed again (the restarted node's Entity States).
   auto& n2 = wire.node(2);
-  EXPECT_EQ(n2.world().ents.state[n2.index("t1")], destroyed(n2, "t1"));
+  EXPECT_EQ(n2.world().ents.state[n2.index("t1")], test::destroyed(n2, "t1"));
 }
 
 TEST(RestartedNode, ItsVehicleKilledInAnotherNodesCollisionComesBackKilled) {
@@ -78,11 +74,11 @@ TEST(RestartedNode, ItsVehicleKilledInAnotherNodesCollisionComesBackKilled) {
   auto& n2 = wire.node(2);
   const auto ev = wire.events(2);
   const int a2 = n2.index("a2");
-  EXPECT_EQ(n2.world().ents.state[a2], destroyed(n2, "a2")) << "a2 was killed by node 1's collision before the restart";
+  EXPECT_EQ(n2.world().ents.state[a2], test::destroyed(n2, "a2")) << "a2 was killed by node 1's collision before the restart";
   EXPECT_EQ(n2.world().ents.vel[a2], Vec3::Zero());
   EXPECT_EQ(count(ev, "collision", "t1/a2"), 1) << "applied once, though node 1 repeats it every heartbeat";
   auto& n1 = wire.node(1);
-  EXPECT_EQ(n1.world().ents.state[n1.index("a2")], destroyed(n1, "a2"));
+  EXPECT_EQ(n1.world().ents.state[n1.index("a2")], test::destroyed(n1, "a2"));
 }
 
 TEST(RestartedNode, ItsVehicleKilledByADeadNodesAdoptedCollisionComesBackKilled) {
@@ -96,10 +92,10 @@ TEST(RestartedNode, ItsVehicleKilledByADeadNodesAdoptedCollisionComesBackKilled)
   wire.run(kAfter);
   auto& n2 = wire.node(2);
   const int a2 = n2.index("a2");
-  EXPECT_EQ(n2.world().ents.state[a2], destroyed(n2, "a2")) << "node 3's adopted repeat names a2 killed";
+  EXPECT_EQ(n2.world().ents.state[a2], test::destroyed(n2, "a2")) << "node 3's adopted repeat names a2 killed";
   EXPECT_EQ(n2.world().ents.vel[a2], Vec3::Zero());
   auto& n3 = wire.node(3);
-  EXPECT_EQ(n3.world().ents.state[n3.index("a2")], destroyed(n3, "a2")) << "node 3 sees a2 destroyed again";
+  EXPECT_EQ(n3.world().ents.state[n3.index("a2")], test::destroyed(n3, "a2")) << "node 3 sees a2 destroyed again";
 }
 
 TEST(RestartedNode, APastRoundDestroysTheVehicleItHitAndBlastsNoneOfOurs) {
@@ -107,7 +103,7 @@ TEST(RestartedNode, APastRoundDestroysTheVehicleItHitAndBlastsNoneOfOurs) {
   wire.run(kKillAt);
   {
     auto& n2 = wire.node(2);
-    ASSERT_EQ(n2.world().ents.state[n2.index("v2")], destroyed(n2, "v2")) << "g1's round hit v2";
+    ASSERT_EQ(n2.world().ents.state[n2.index("v2")], test::destroyed(n2, "v2")) << "g1's round hit v2";
     ASSERT_EQ(n2.world().ents.state[n2.index("m2")], 0) << "m2 was out of the blast";
   }
   wire.kill(2);
@@ -115,7 +111,7 @@ TEST(RestartedNode, APastRoundDestroysTheVehicleItHitAndBlastsNoneOfOurs) {
   wire.restart(2, kKillAt + kDeadFor);
   wire.run(kAfter);
   auto& n2 = wire.node(2);
-  EXPECT_EQ(n2.world().ents.state[n2.index("v2")], destroyed(n2, "v2")) << "the repeated Detonation names v2 hit";
+  EXPECT_EQ(n2.world().ents.state[n2.index("v2")], test::destroyed(n2, "v2")) << "the repeated Detonation names v2 hit";
   EXPECT_EQ(n2.world().ents.state[n2.index("m2")], 0) << "m2 was 90 m away when the round fell";
   EXPECT_EQ(count(wire.events(2), "detonation"), 1) << "applied once";
 }

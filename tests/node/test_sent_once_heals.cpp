@@ -35,9 +35,6 @@ int count(const std::vector<nlohmann::json>& ev, const std::string& type) {
   return n;
 }
 
-// The application of an Entity State's entity id (octets 14-15).
-int es_application(const std::vector<std::uint8_t>& d) { return d.size() > 15 ? (d[14] << 8) | d[15] : -1; }
-
 }  // namespace
 
 TEST(SentOnceHeals, ADetonationLostOnEveryLinkReachesTheOthersBeforeItsNodeIsKilled) {
@@ -53,11 +50,9 @@ TEST(SentOnceHeals, ADetonationLostOnEveryLinkReachesTheOthersBeforeItsNodeIsKil
   wire.kill(1);
   wire.run(40);
   auto& n2 = wire.node(2);
-  const int v2 = n2.index("v2");
   EXPECT_GE(detonations_sent, 2) << "a quick repeat left node 1 before the kill";
   EXPECT_EQ(count(wire.events(2), "detonation"), 1) << "node 2 applied the round once";
-  EXPECT_EQ(n2.world().ents.state[v2], static_cast<int>(n2.world().kinds[n2.world().ents.kind[v2]].states.size()) - 1)
-      << "the round's direct hit destroyed v2";
+  EXPECT_EQ(n2.world().ents.state[n2.index("v2")], test::destroyed(n2, "v2")) << "the round's direct hit destroyed v2";
 }
 
 namespace {
@@ -71,7 +66,7 @@ struct LateEntity {
   test::Deliver deliver() {
     return [this](int from, int to, const std::vector<std::uint8_t>& d) {
       if (to != 3) return 1;
-      if (from == 2 && hide_a2 && test::pdu_type(d) == kPduEntityState && es_application(d) == 2) return 0;
+      if (from == 2 && hide_a2 && test::pdu_type(d) == kPduEntityState && test::es_application(d) == 2) return 0;
       if (test::pdu_type(d) == kPduCollision && d.size() >= 30) {
         ++collisions_to_3;
         if (!seen.insert(std::vector<std::uint8_t>(d.begin() + 12, d.begin() + 30)).second) return 0;  // a repeat

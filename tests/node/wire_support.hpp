@@ -131,6 +131,12 @@ class Wire {
 
 // The PDU type of a datagram of one PDU (header octet 2), and an Entity State's damage bits.
 inline int pdu_type(const std::vector<std::uint8_t>& d) { return d.size() > 2 ? d[2] : -1; }
+// The application of an Entity State's entity id (octets 14-15).
+inline int es_application(const std::vector<std::uint8_t>& d) { return d.size() > 15 ? (d[14] << 8) | d[15] : -1; }
+// The damage state of vehicle `id` when destroyed (its kind's last state) on node n.
+inline int destroyed(const WiredNode& n, const std::string& id) {
+  return static_cast<int>(n.world().kinds[n.world().ents.kind[n.index(id)]].states.size()) - 1;
+}
 inline unsigned es_damage(const std::vector<std::uint8_t>& d) {
   if (d.size() < 88) return 0;
   const std::uint32_t app = (std::uint32_t(d[84]) << 24) | (std::uint32_t(d[85]) << 16) | (std::uint32_t(d[86]) << 8) | d[87];
