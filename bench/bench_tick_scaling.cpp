@@ -148,6 +148,10 @@ int main(int argc, char** argv) {
       for (int i = 0; i < ticks; ++i) nd.timed_tick();
       std::printf("%8d %9zu %6d | %s, %d thread(s): median %.3f ms, cpu %.3f ms | %d\n", n, w.ents.size(), ticks,
                   one_net ? "net on" : "net off", one_threads, nd.median(), nd.cpu_median(), nd.collisions());
+      if (nd.bridge)  // what net out sent: the same bits before and after a change to it
+        std::printf("  Entity States: digest %016llx, %llu exact DR tests\n",
+                    static_cast<unsigned long long>(nd.bridge->entity_state_digest()),
+                    static_cast<unsigned long long>(nd.bridge->exact_dr_tests()));
       continue;
     }
     std::vector<std::unique_ptr<Node>> nodes;  // [net off 1t, net off 2t, net 1t, net 2t]

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 
 namespace npsnet::geo {
@@ -98,15 +99,24 @@ TmRaw tm_forward_raw(double lat, double dlon) {
   return {c.a_rect * eta, c.a_rect * xi, gamma};
 }
 
-// Inverse TM (no offsets): (x, y) m -> (lat, dlon) rad.
-void tm_inverse_raw(double x, double y, double& lat, double& dlon) {
+// The inverse's series terms of one coordinate (FrameMemo::Terms): sin and cos of 2j xi, or
+// sinh and cosh of 2j eta.
+void xi_series(double xi, FrameMemo::Terms& t) {
+  for (int j = 1; j <= 6; ++j) t.a[j - 1] = std::sin(2.0 * j * xi), t.b[j - 1] = std::cos(2.0 * j * xi);
+}
+void eta_series(double eta, FrameMemo::Terms& t) {
+  for (int j = 1; j <= 6; ++j) t.a[j - 1] = std::sinh(2.0 * j * eta), t.b[j - 1] = std::cosh(2.0 * j * eta);
+}
+
+// Inverse TM (no offsets) from xi = y / A, eta = x / A and their series terms -> (lat, dlon) rad.
+void tm_inverse_terms(double xi, double eta, const FrameMemo::Terms& xt, const FrameMemo::Terms& et, double& lat,
+                      double& dlon) {
   const auto& c = tm_coefficients();
-  const double xi = y / c.a_rect, eta = x / c.a_rect;
   double xip = xi, etap = eta;
   for (int j = 1; j <= 6; ++j) {
     const double b = c.beta[j - 1];
-    xip -= b * std::sin(2.0 * j * xi) * std::cosh(2.0 * j * eta);
-    etap -= b * std::cos(2.0 * j * xi) * std::sinh(2.0 * j * eta);
+    xip -= b * xt.a[j - 1] * et.b[j - 1];  // b sin(2j xi) cosh(2j eta)
+    etap -= b * xt.b[j - 1] * et.a[j - 1];  // b cos(2j xi) sinh(2j eta)
   }
   const double sxip = std::sin(xip), cxip = std::cos(xip), shetap = std::sinh(etap);
   const double r = std::hypot(shetap, cxip);
@@ -115,15 +125,34 @@ void tm_inverse_raw(double x, double y, double& lat, double& dlon) {
   lat = std::atan(tau_from_taup(taup, c.e));
 }
 
-// Rotation from NED (north, east, down) to ECEF at (lat, lon) in radians: columns N, E, D.
-Mat3 ned_to_ecef(double lat, double lon) {
-  const double sp = std::sin(lat), cp = std::cos(lat), sl = std::sin(lon), cl = std::cos(lon);
+// Inverse TM (no offsets): (x, y) m -> (lat, dlon) rad.
+void tm_inverse_raw(double x, double y, double& lat, double& dlon) {
+  const auto& c = tm_coefficients();
+  const double xi = y / c.a_rect, eta = x / c.a_rect;
+  FrameMemo::Terms xt, et;
+  xi_series(xi, xt);
+  eta_series(eta, et);
+  tm_inverse_terms(xi, eta, xt, et, lat, dlon);
+}
+
+// ECEF of latitude and longitude given by their sines and cosines, height h (m).
+Vec3 ecef_of(double sp, double cp, double sl, double cl, double h) {
+  const double n = kWgs84A / std::sqrt(1.0 - kWgs84E2 * sp * sp);
+  return {(n + h) * cp * cl, (n + h) * cp * sl, (n * (1.0 - kWgs84E2) + h) * sp};
+}
+
+// Rotation from NED (north, east, down) to ECEF at a latitude and longitude given by their sines
+// and cosines: columns N, E, D.
+Mat3 ned_to_ecef(double sp, double cp, double sl, double cl) {
   Mat3 m;
   m.col(0) = Vec3(-sp * cl, -sp * sl, cp);
   m.col(1) = Vec3(-sl, cl, 0.0);
   m.col(2) = Vec3(-cp * cl, -cp * sl, -sp);
   return m;
 }
+
+// Rotation from NED (north, east, down) to ECEF at (lat, lon) in radians: columns N, E, D.
+Mat3 ned_to_ecef(double lat, double lon) { return ned_to_ecef(std::sin(lat), std::cos(lat), std::sin(lon), std::cos(lon)); }
 
 // Rz(yaw) * Ry(pitch) * Rx(roll): the aerospace / DIS z-y'-x'' sequence.
 Mat3 zyx_rotation(double yaw, double pitch, double roll) {
@@ -140,15 +169,22 @@ Vec3 zyx_angles(const Mat3& r) {
   return {yaw, pitch, roll};
 }
 
+// DIS Euler angles of a local heading, pitch, roll (deg) where the grid convergence is conv_deg
+// and ned is ned_to_ecef (LocalFrame::to_dis_euler).
+Vec3 dis_euler(double conv_deg, const Mat3& ned, double heading_deg, double pitch_deg, double roll_deg) {
+  // Grid heading -> true heading: grid north lies gamma clockwise of true north.
+  const double true_heading = deg2rad(heading_deg + conv_deg);
+  const Mat3 body_to_ned = zyx_rotation(true_heading, deg2rad(pitch_deg), deg2rad(roll_deg));
+  const Mat3 body_to_ecef = ned * body_to_ned;
+  return zyx_angles(body_to_ecef);
+}
+
 }  // namespace
 
 // --- ECEF -------------------------------------------------------------------------------------
 Vec3 geodetic_to_ecef(const Geodetic& g) {
   const double lat = deg2rad(g.lat_deg), lon = deg2rad(g.lon_deg);
-  const double sp = std::sin(lat), cp = std::cos(lat);
-  const double n = kWgs84A / std::sqrt(1.0 - kWgs84E2 * sp * sp);
-  return {(n + g.h_m) * cp * std::cos(lon), (n + g.h_m) * cp * std::sin(lon),
-          (n * (1.0 - kWgs84E2) + g.h_m) * sp};
+  return ecef_of(std::sin(lat), std::cos(lat), std::sin(lon), std::cos(lon), g.h_m);
 }
 
 Geodetic ecef_to_geodetic(const Vec3& ecef) {
@@ -258,11 +294,8 @@ Vec3 LocalFrame::to_dis_euler(const Vec3& local_pos, double heading_deg, double 
 }
 
 Vec3 LocalFrame::to_dis_euler(const Geodetic& g, double heading_deg, double pitch_deg, double roll_deg) const {
-  // Grid heading -> true heading: grid north lies gamma clockwise of true north.
-  const double true_heading = deg2rad(heading_deg + convergence_deg(g));
-  const Mat3 body_to_ned = zyx_rotation(true_heading, deg2rad(pitch_deg), deg2rad(roll_deg));
-  const Mat3 body_to_ecef = ned_to_ecef(deg2rad(g.lat_deg), deg2rad(g.lon_deg)) * body_to_ned;
-  return zyx_angles(body_to_ecef);
+  return dis_euler(convergence_deg(g), ned_to_ecef(deg2rad(g.lat_deg), deg2rad(g.lon_deg)), heading_deg, pitch_deg,
+                   roll_deg);
 }
 
 Vec3 LocalFrame::from_dis_euler(const Vec3& local_pos, const Vec3& psi_theta_phi) const {
@@ -272,6 +305,45 @@ Vec3 LocalFrame::from_dis_euler(const Vec3& local_pos, const Vec3& psi_theta_phi
       ned_to_ecef(deg2rad(g.lat_deg), deg2rad(g.lon_deg)).transpose() * body_to_ecef;
   const Vec3 ypr = zyx_angles(body_to_ned);
   return {wrap360(rad2deg(ypr.x()) - convergence_deg(g)), rad2deg(ypr.y()), rad2deg(ypr.z())};
+}
+
+// --- FrameMemo ---------------------------------------------------------------------------------
+Geodetic FrameMemo::to_geodetic(const Vec3& local) {
+  // LocalFrame::to_geodetic -> TransverseMercator::inverse -> tm_inverse_raw, step by step.
+  const TransverseMercator& tm = f_.tm_;
+  const double x = local.x() - tm.fe_, y = local.y() - tm.fn_ + tm.y0_;
+  const auto& c = tm_coefficients();
+  const double xi = y / c.a_rect, eta = x / c.a_rect;
+  const LatLon& ll = inv_.get(Key2{std::bit_cast<std::uint64_t>(xi), std::bit_cast<std::uint64_t>(eta)}, [&](LatLon& v) {
+    const Terms& xt = xi_.get(std::bit_cast<std::uint64_t>(xi), [&](Terms& t) { xi_series(xi, t); });
+    const Terms& et = eta_.get(std::bit_cast<std::uint64_t>(eta), [&](Terms& t) { eta_series(eta, t); });
+    double lat = 0, dlon = 0;
+    tm_inverse_terms(xi, eta, xt, et, lat, dlon);
+    v = {rad2deg(lat), std::remainder(tm.lon0_ + rad2deg(dlon), 360.0)};
+  });
+  return {ll.lat_deg, ll.lon_deg, local.z()};
+}
+
+namespace {
+template <class Kept>
+const auto& sincos_deg(Kept& kept, double deg) {
+  return kept.get(std::bit_cast<std::uint64_t>(deg), [&](auto& v) {
+    const double r = deg2rad(deg);
+    v.s = std::sin(r), v.c = std::cos(r);
+  });
+}
+}  // namespace
+
+Vec3 FrameMemo::geodetic_to_ecef(const Geodetic& g) {
+  const SinCos& la = sincos_deg(lat_, g.lat_deg);
+  const SinCos& lo = sincos_deg(lon_, g.lon_deg);
+  return ecef_of(la.s, la.c, lo.s, lo.c, g.h_m);
+}
+
+Vec3 FrameMemo::to_dis_euler(const Geodetic& g, double heading_deg, double pitch_deg, double roll_deg) {
+  const SinCos& la = sincos_deg(lat_, g.lat_deg);
+  const SinCos& lo = sincos_deg(lon_, g.lon_deg);
+  return dis_euler(f_.convergence_deg(g), ned_to_ecef(la.s, la.c, lo.s, lo.c), heading_deg, pitch_deg, roll_deg);
 }
 
 }  // namespace npsnet::geo

@@ -2,6 +2,8 @@
 // terrain's local frame (x east, y north, metres, origin at the SW corner) to geodetic.
 // Angles in degrees at the API, heights in metres above the ellipsoid. Accurate to < 1 mm.
 #pragma once
+#include <cstdint>
+
 #include "core/math.hpp"
 
 namespace npsnet::geo {
@@ -25,6 +27,8 @@ Vec3 enu_to_ecef(const Vec3& enu, const Geodetic& origin);
 
 // Transverse Mercator (Krueger series to 6th order, scale 1 on the central meridian), centred
 // at (lat0, lon0) with false easting/northing so that a chosen point maps to (0, 0).
+class FrameMemo;
+
 class TransverseMercator {
  public:
   TransverseMercator() = default;
@@ -37,6 +41,7 @@ class TransverseMercator {
   double false_northing() const { return fn_; }
 
  private:
+  friend class FrameMemo;
   double lat0_ = 0, lon0_ = 0, fe_ = 0, fn_ = 0, y0_ = 0;
 };
 
@@ -66,7 +71,66 @@ class LocalFrame {
   const TransverseMercator& projection() const { return tm_; }
 
  private:
+  friend class FrameMemo;
   TransverseMercator tm_;
+};
+
+// LocalFrame's to_geodetic, to_ecef and to_dis_euler, bit for bit, for a run of points that
+// share coordinates (issue 13: an exact dead-reckoning test turns p, p + velocity and p + each
+// axis into ECEF: p + x keeps p's northing, p + y its easting, p + z both). It keeps the
+// transverse Mercator inverse's series terms of the last three northings (sin and cos of 2j xi)
+// and eastings (sinh and cosh of 2j eta), the last two inverses, and the last two latitudes' and
+// longitudes' sines and cosines, each keyed by the bits of its argument, so what it returns is a
+// function of the point's bits only (the same libm calls on the same arguments, the same
+// operations after). Not shared between threads; small enough for the stack.
+class FrameMemo {
+ public:
+  explicit FrameMemo(const LocalFrame& f) : f_(f) {}
+  Geodetic to_geodetic(const Vec3& local);
+  Vec3 to_ecef(const Vec3& local) { return geodetic_to_ecef(to_geodetic(local)); }
+  Vec3 geodetic_to_ecef(const Geodetic& g);
+  Vec3 to_dis_euler(const Geodetic& g, double heading_deg, double pitch_deg, double roll_deg);
+  // Series terms (of one coordinate) and whole inverses computed so far (tests).
+  int terms_computed() const { return xi_.made + eta_.made; }
+  int inverses_computed() const { return inv_.made; }
+
+  struct Terms {  // sin, cos of 2j xi (or sinh, cosh of 2j eta), j = 1..6
+    double a[6] = {}, b[6] = {};
+  };
+
+ private:
+  struct Key2 {  // the bits of two doubles
+    std::uint64_t a = 0, b = 0;
+    bool operator==(const Key2&) const = default;
+  };
+  struct LatLon {
+    double lat_deg = 0, lon_deg = 0;
+  };
+  struct SinCos {
+    double s = 0, c = 0;
+  };
+  // The values of the last N keys; the oldest is replaced.
+  template <int N, class K, class V>
+  struct Kept {
+    K key[N] = {};
+    bool valid[N] = {};
+    V val[N] = {};
+    int next = 0, made = 0;
+    template <class Make>
+    const V& get(const K& k, Make make) {
+      for (int i = 0; i < N; ++i)
+        if (valid[i] && key[i] == k) return val[i];
+      const int i = next;
+      next = (next + 1) % N;
+      make(val[i]);
+      key[i] = k, valid[i] = true, ++made;
+      return val[i];
+    }
+  };
+  const LocalFrame& f_;
+  Kept<3, std::uint64_t, Terms> xi_, eta_;
+  Kept<2, Key2, LatLon> inv_;
+  Kept<2, std::uint64_t, SinCos> lat_, lon_;
 };
 
 }  // namespace npsnet::geo

@@ -23,15 +23,19 @@ Vec3 ecef_velocity(const world::World& w, const Vec3& p, const Vec3& v) {
 }  // namespace
 
 net::KinematicState entity_truth(const world::World& w, int e) {
-  const auto& frame = w.terrain.frame();
+  geo::FrameMemo memo(w.terrain.frame());
+  return entity_truth(w, e, memo);
+}
+
+net::KinematicState entity_truth(const world::World& w, int e, geo::FrameMemo& memo) {
   net::KinematicState s;
   const Vec3 p = w.ents.pos[e];
-  const geo::Geodetic g = frame.to_geodetic(p);  // once, for the position and the orientation
-  const Vec3 pe = geo::geodetic_to_ecef(g);
+  const geo::Geodetic g = memo.to_geodetic(p);  // once, for the position and the orientation
+  const Vec3 pe = memo.geodetic_to_ecef(g);
   s.position = ev(pe);
-  s.velocity = ev(frame.to_ecef(p + w.ents.vel[e]) - pe);
-  const Vec3 eu = frame.to_dis_euler(g, w.ents.heading_deg[e], w.ents.pitch_deg[e], w.ents.roll_deg[e]);
+  const Vec3 eu = memo.to_dis_euler(g, w.ents.heading_deg[e], w.ents.pitch_deg[e], w.ents.roll_deg[e]);
   s.orientation = {eu.x(), eu.y(), eu.z()};
+  s.velocity = ev(memo.to_ecef(p + w.ents.vel[e]) - pe);
   return s;
 }
 

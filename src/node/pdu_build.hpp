@@ -6,6 +6,7 @@
 #pragma once
 #include <cstdint>
 
+#include "core/geodesy.hpp"
 #include "net/net.hpp"
 #include "world/changes.hpp"
 #include "world/world.hpp"
@@ -15,6 +16,9 @@ namespace npsnet::node {
 // Entity e's true state: ECEF position, ECEF velocity, DIS Euler angles (acceleration and
 // angular velocity zero; the publisher fills them).
 net::KinematicState entity_truth(const world::World& w, int e);
+// The same through `memo` (the same bits): the points it turns into ECEF (e's position, position
+// + velocity) are kept there for the caller's next ones (exact_state's finite differences).
+net::KinematicState entity_truth(const world::World& w, int e, geo::FrameMemo& memo);
 
 // The one Entity State fill of a local vehicle: id, force, kind's DIS type (also as the
 // alternative type), marking = scenario id, appearance, kinematics with `algorithm`, timestamp
