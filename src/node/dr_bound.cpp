@@ -46,7 +46,7 @@ void dr_rebase(const net::KinematicState& s, const net::DrPublisher& pub, double
   a.valid = true;
 }
 
-net::KinematicState exact_state(const world::World& w, int e, const net::DrPublisher& pub, double t, DrAnchor& a) {
+net::KinematicState exact_state(const world::World& w, int e, DrAnchor& a) {
   // Five points into ECEF: p, p + velocity, then p + z (p's inverse, kept), p + x (p's northing
   // terms), p + y (its easting terms): geo::FrameMemo computes each shared part once.
   geo::FrameMemo memo(w.terrain.frame());
@@ -57,8 +57,7 @@ net::KinematicState exact_state(const world::World& w, int e, const net::DrPubli
   a.jac.col(1) = memo.to_ecef(p + Vec3::UnitY()) - pe;
   a.p = p;
   a.heading = w.ents.heading_deg[e], a.pitch = w.ents.pitch_deg[e], a.roll = w.ents.roll_deg[e];
-  a.valid = false;
-  if (pub.has_sent()) dr_rebase(s, pub, t, a);
+  a.valid = false;  // until dr_rebase
   return s;
 }
 

@@ -48,9 +48,12 @@ struct DrAnchor {
 // Whether the exact test at state time t is certain to say None for entity e, published by pub.
 bool dr_quiet(const DrAnchor& a, const net::DrPublisher& pub, const world::World& w, int e, double t);
 
-// The exact state of e (entity_truth) and a new anchor for it against pub's believed pose at t.
-net::KinematicState exact_state(const world::World& w, int e, const net::DrPublisher& pub, double t, DrAnchor& a);
-// After pub sent state s at t: the anchor's errors against the new believed pose.
+// The exact state of e (entity_truth) and a new anchor for it, not valid until dr_rebase gives
+// it its errors: against the publisher's believed pose when the state is not sent, or the new
+// one after it is (the caller's choice: one rebase a test).
+net::KinematicState exact_state(const world::World& w, int e, DrAnchor& a);
+// The anchor's errors, of the exact state s at t, against pub's believed pose then (after a send:
+// the new one). Only once pub has sent (before, the anchor stays not valid).
 void dr_rebase(const net::KinematicState& s, const net::DrPublisher& pub, double t, DrAnchor& a);
 
 }  // namespace npsnet::node

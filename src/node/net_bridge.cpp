@@ -67,6 +67,7 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
   yaw_rate_.assign(own_.size(), 0.f);
   anchors_.assign(own_.size(), DrAnchor{});
   skip_.assign(own_.size(), 0);
+  changed_.assign(own_.size(), 0);
   prev_heading_.assign(own_.size(), 0.f);
   removed_.assign(own_.size(), 0);
   announce_left_.assign(own_.size(), 0);

@@ -265,6 +265,7 @@ class NetBridge {
   std::vector<float> yaw_rate_;  // per own vehicle: this tick's heading change, rad/s
   std::vector<DrAnchor> anchors_;  // per own vehicle: its last exact DR test (dr_bound.hpp)
   std::vector<std::uint8_t> skip_;  // per own vehicle: removed, or this tick's Entity State surely not due
+  std::vector<std::uint8_t> changed_;  // per own vehicle: this tick, damage or group not as last sent
   std::vector<std::uint32_t> order_;  // this tick's own vehicles not skipped, in round-robin order
   struct Tested {                     // an exact test made ahead on the pool (vehicle_publish.cpp)
     DrAnchor anchor;

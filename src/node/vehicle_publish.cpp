@@ -65,15 +65,19 @@ void NetBridge::publish_vehicles() {
       prev_heading_[i] = w.ents.heading_deg[e];
       // Passed over by the serial loop below: removed, or no damage / group change and surely
       // not due (what it would find for itself; its sends change only vehicle i's own fields).
+      // The change is the loop's `changed` for the same reason: past the cap it looks only at
+      // changed vehicles, reading no more of the others than this byte.
       if (removed_[i]) {
-        skip_[i] = 1;
+        skip_[i] = 1, changed_[i] = 0;
         continue;
       }
+      const bool changed = pubs_[i].has_sent() && (damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]) !=
+                                                       sent_appearance_[i] ||
+                                                   group_at(w.ents.pos[e]) != sent_group_[i]);
       const bool quiet = opt_.dr_prefilter && dr_quiet(anchors_[i], pubs_[i], w, e, t);
       const bool repeat = announce_left_[i] > 0 && t >= announce_at_[i] - 1e-9;  // kAnnounceRepeats
-      skip_[i] = quiet && !repeat && !(pubs_[i].has_sent() && (damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]) !=
-                                                        sent_appearance_[i] ||
-                                                    group_at(w.ents.pos[e]) != sent_group_[i]));
+      changed_[i] = changed;
+      skip_[i] = quiet && !repeat && !changed;
     }
   };
   if (core::Jobs* jobs = sim_.jobs()) jobs->for_chunks(n, 2048, local);
@@ -85,24 +89,24 @@ void NetBridge::publish_vehicles() {
     if (!skip_[i]) order_.push_back(static_cast<std::uint32_t>(i));
   // With worker threads, the exact tests (exact_state: geodesy) of the next vehicles in that
   // order (a batch, kMaxTestBatch) run on the pool, each into its own slot (its anchor copied
-  // first); the loop takes a vehicle's slot when it reaches it. exact_state reads the world and
-  // the vehicle's own publisher and anchor only, which the loop changes only at that vehicle, so
-  // the slot holds what the loop would compute there; results the loop does not reach (past the
+  // first); the loop takes a vehicle's slot when it reaches it. exact_state reads the world only
+  // and writes the slot's anchor (the loop rebases it on the vehicle's publisher), so the slot
+  // holds what the loop would compute there; results the loop does not reach (past the
   // cap) are dropped, anchors and counts untouched. Not once the cap defers all but changes.
   core::Jobs* jobs = sim_.jobs();
   size_t tested0 = 0, tested1 = 0;  // positions in order_ whose tests are in tested_
   for (size_t p = 0; p < order_.size(); ++p) {
     const size_t i = order_[p];
-    const int e = own_[i];
-    const std::uint32_t app = damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]);
-    const std::uint32_t group = group_at(w.ents.pos[e]);
-    // A damage change, or a move into another cell's group (announced there at once).
-    const bool changed = pubs_[i].has_sent() && (app != sent_appearance_[i] || group != sent_group_[i]);
-    // A quick repeat of a first Entity State or of a damage change (kAnnounceRepeats).
-    const bool repeat = announce_left_[i] > 0 && t >= announce_at_[i] - 1e-9;
+    // A damage change, or a move into another cell's group (announced there at once): changed_.
+    const bool changed = changed_[i];
     const bool capped = (!pack_ || aoi_) && sent_now >= kMaxDatagramsPerTick;
     const bool deferring = capped && first_deferred != n && opt_.dr_prefilter;
     if (deferring && !changed) continue;  // deferred whatever it says
+    const int e = own_[i];
+    const std::uint32_t app = damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]);
+    const std::uint32_t group = group_at(w.ents.pos[e]);
+    // A quick repeat of a first Entity State or of a damage change (kAnnounceRepeats).
+    const bool repeat = announce_left_[i] > 0 && t >= announce_at_[i] - 1e-9;
     if (jobs && !deferring && p >= tested1) {
       const size_t room = (!pack_ || aoi_) && opt_.dr_prefilter
                               ? (sent_now < kMaxDatagramsPerTick ? kMaxDatagramsPerTick - sent_now : 0) + 1
@@ -113,7 +117,7 @@ void NetBridge::publish_vehicles() {
         for (size_t q = q0; q < q1; ++q) {
           const size_t j = order_[tested0 + q];
           tested_[q].anchor = anchors_[j];
-          tested_[q].state = exact_state(w, own_[j], pubs_[j], t, tested_[q].anchor);
+          tested_[q].state = exact_state(w, own_[j], tested_[q].anchor);
         }
       });
     }
@@ -122,14 +126,23 @@ void NetBridge::publish_vehicles() {
       s = tested_[p - tested0].state;
       anchors_[i] = tested_[p - tested0].anchor;
     } else {
-      s = exact_state(w, e, pubs_[i], t, anchors_[i]);
+      s = exact_state(w, e, anchors_[i]);
     }
     ++exact_tests_;
     s.acceleration = anchors_[i].jac * accel_[i];
     s.angular_velocity = Eigen::Vector3d(0, 0, yaw_rate_[i]);
-    if (!changed && !repeat && pubs_[i].needs_update(s, t) == net::DrPublisher::Reason::None) continue;
+    // Not sent (not due, deferred, the send failed): the anchor's errors are against the believed
+    // pose it keeps. Sent: against the new one (below); so exact_state leaves them to the loop.
+    auto keep_anchor = [&] {
+      if (pubs_[i].has_sent()) dr_rebase(s, pubs_[i], t, anchors_[i]);
+    };
+    if (!changed && !repeat && pubs_[i].needs_update(s, t) == net::DrPublisher::Reason::None) {
+      keep_anchor();
+      continue;
+    }
     if (capped && !changed) {  // a damage change never waits
       if (first_deferred == n) first_deferred = i;
+      keep_anchor();
       continue;
     }
     fill_entity_state(w, e, own_id(e), s, pubs_[i].algorithm(), app, static_cast<std::uint8_t>(opt_.exercise), t, es_);
@@ -139,10 +152,12 @@ void NetBridge::publish_vehicles() {
         flush_batch();
         if (!batch_.add(es_)) {  // cannot happen for our PDUs (no variable parameters)
           ++session_->counters().send_failures;
+          keep_anchor();
           continue;
         }
       }
     } else if (!session_->send_to(group, es_)) {
+      keep_anchor();
       continue;
     }
     if (!pubs_[i].has_sent() || changed) announce_left_[i] = kAnnounceRepeats;  // new or changed: repeat it soon

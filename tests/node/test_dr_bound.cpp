@@ -31,7 +31,9 @@ struct Sent {
   std::uint64_t digest = 0, exact_tests = 0, entity_states = 0;  // ground vehicles' Entity States
 };
 
-Sent run(bool prefilter, int threads, bool pack, int ticks) {
+// damage: at ticks 20 and 26 (the send cap still defers: first Entity States and their quick
+// repeats), every 37th local ground vehicle is damaged one state further.
+Sent run(bool prefilter, int threads, bool pack, int ticks, bool damage = false) {
   if (pack) ::setenv("NPSNET_DIS_PACK", "1", 1);
   else ::unsetenv("NPSNET_DIS_PACK");
   const auto file = test::scratch_dir() / ("dr-bound-" + std::to_string(prefilter) + std::to_string(threads) + ".jsonl");
@@ -43,7 +45,18 @@ Sent run(bool prefilter, int threads, bool pack, int ticks) {
   bo.dr_prefilter = prefilter;
   node::NetBridge bridge(bo, sim, log);
   bridge.attach();
-  for (int i = 0; i < ticks; ++i) sim.tick();
+  for (int i = 0; i < ticks; ++i) {
+    if (damage && (i == 20 || i == 26)) {
+      const world::World& w = sim.world();
+      world::Changes c;
+      for (int e = 0; e < static_cast<int>(w.ents.size()); e += 37)
+        if (w.ents.local[e] && w.kinds[w.ents.kind[e]].mobility == world::Mobility::Ground &&
+            w.ents.state[e] + 1 < static_cast<int>(w.kinds[w.ents.kind[e]].states.size()))
+          c.entities.push_back(world::EntityChange{.entity = e, .to_state = w.ents.state[e] + 1});
+      sim.inject(c);
+    }
+    sim.tick();
+  }
   ::unsetenv("NPSNET_DIS_PACK");
   return {bridge.entity_state_digest(), bridge.exact_dr_tests(), bridge.ground_es_sent()};
 }
@@ -102,4 +115,20 @@ TEST(DrBound, CrowdSendsTheSameEntityStatesAsTheExactTestEveryTick) {
   EXPECT_EQ(pfast.entity_states, pexact.entity_states);
   EXPECT_EQ(pfast.digest, pexact.digest);
   EXPECT_LT(pfast.exact_tests * 3, pexact.exact_tests);
+}
+
+// Damage changes while the send cap defers go out at once, wherever the vehicle is in the round
+// robin, as when every vehicle is turned into ECEF every tick: the per-vehicle pass flags the
+// change (changed_) for the serial loop, which past the cap looks at nothing else.
+TEST(DrBound, DamageChangesPastTheCapGoOutAtOnce) {
+  const int ticks = 40;
+  const Sent exact = run(false, 1, false, ticks, true);
+  const Sent fast = run(true, 1, false, ticks, true);
+  const Sent fast2 = run(true, 2, false, ticks, true);
+  const Sent quiet = run(true, 1, false, ticks, false);
+  EXPECT_EQ(fast.entity_states, exact.entity_states);
+  EXPECT_EQ(fast.digest, exact.digest);
+  EXPECT_EQ(fast2.entity_states, exact.entity_states);
+  EXPECT_EQ(fast2.digest, exact.digest);
+  EXPECT_GT(fast.entity_states, quiet.entity_states + 50) << "the damaged vehicles' Entity States (and repeats)";
 }
