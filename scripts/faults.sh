@@ -68,7 +68,8 @@ node() {  # node K, run tag, start (UNIX s): runs until END
   ip netns exec "${P}n$k" env NPSNET_DIS_TIMEOUT_S="${NPSNET_DIS_TIMEOUT_S:-12}" "$NPSNET" run --scenario "$SCENARIO" \
     --no-render --quiet --net "udp://239.1.2.3:$PORT" --iface "10.215.0.$((10 + k))" --node "$k" --site 1 --app "$k" \
     --start-at "$start" --seconds "$(( END - start ))" --events "$OUT/events_$tag.jsonl" --snapshots "$OUT/snap_$tag" \
-    --state-out "$OUT/state_$k.json" --state-at "$(( END - 1 - start ))" --track-every 0.1 > "$OUT/out_$tag.txt" 2>&1 &
+    --state-out "$OUT/state_$k.json" --state-at "$(( END - 1 - start ))" --track-every 0.1 \
+    --checkpoint "$OUT/checkpoint_$k.jsonl" > "$OUT/out_$tag.txt" 2>&1 &
   PIDS+=($!)
 }
 at() { while [ "$(date +%s)" -lt "$(( T0 + $1 ))" ]; do sleep 0.05; done; }  # until T0 + S

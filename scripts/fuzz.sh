@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (fuzz/, clang, build-fuzz/) and runs each for SECONDS (default 60)
 # from its committed seeds (fuzz/corpus/<t>, fuzz/regressions/<t>), with its dictionary.
-#   bash scripts/fuzz.sh [SECONDS] [TARGET...]     targets: datagram scenario kinds objects model input pcap
+#   bash scripts/fuzz.sh [SECONDS] [TARGET...]     targets: datagram scenario kinds objects model input pcap checkpoint
 # Prints executions, exec/s and findings per target; exits 1 when any target found something
 # (crash, sanitizer report, leak, timeout, out-of-memory): the input is left in
 # build-fuzz/findings/<t>/ — make it a regression (fuzz/regressions/<t>/) with its fix.
@@ -14,7 +14,7 @@ cd "$(dirname "$0")/.."
 secs="${1:-60}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(datagram scenario kinds objects model input pcap)
+[ ${#targets[@]} -gt 0 ] || targets=(datagram scenario kinds objects model input pcap checkpoint)
 nice_cmd=(nice -n "${NPSNET_FUZZ_NICE:-19}")
 if ! command -v clang++ >/dev/null 2>&1; then
   echo "fuzz: clang++ not found (bash scripts/install-deps.sh installs clang)" >&2

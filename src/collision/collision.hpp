@@ -146,6 +146,11 @@ class Detector {
   // Scene-aware auto tier: the budget (ms, >= 0) and the viewers' view volumes this tick.
   void set_budget_ms(double ms) { opt_.budget_ms = ms; }
   void set_views(const std::vector<ViewVolume>& v) { views_ = v; }
+  // Entity e was put somewhere else between ticks (a restored checkpoint): its next tick starts
+  // from the orientation it has then, not from its last tick's (no turn over the move).
+  void forget_turn(int e) {
+    if (e >= 0 && static_cast<size_t>(e) < prev_ok_.size()) prev_ok_[e] = 0;
+  }
   const std::vector<TierChoice>& tier_choices() const { return choices_; }
   // One pair of entities by this detector's method and tier, outside the episode bookkeeping
   // (benchmarks and tests): true with the contact (continuous: the first in the tick).

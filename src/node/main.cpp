@@ -36,6 +36,9 @@ Exit codes: 0 ok, 2 bad input (nothing written), 1 failure while running.)");
   run->add_option("--track-every", o.track_every,
                   "log every vehicle's position every S scenario seconds (track events; npsnet dr-error)")
       ->check(finite_in(0, npsnet::world::kMaxDurationS, "s", true));
+  run->add_option("--checkpoint", o.checkpoint,
+                  "keep this node's vehicles in FILE as it runs; a restart that joins the same exercise "
+                  "puts them back (damage, wrecks where they stood)");
   run->add_option("--snapshots", o.snapshots, "folder for snapshot PNGs (default screenshots/)");
   run->add_flag("--window", o.window, "show a GLFW window (needs a display)");
   run->add_flag("--realtime", o.realtime, "pace ticks to the wall clock");

@@ -16,6 +16,7 @@ struct RunOptions {
   std::filesystem::path state_out;             // --state-out: the world at the end (node/state_dump.hpp)
   std::optional<double> state_at;              // --state-at: ... or at this scenario time (s)
   std::optional<double> track_every;           // --track-every: `track` events every S (node/track_log.hpp)
+  std::filesystem::path checkpoint;            // --checkpoint: own vehicles kept on disk for a restart (node/checkpoint.hpp)
   std::filesystem::path snapshots = "screenshots";
   bool window = false, realtime = false;
   std::string net = "off";

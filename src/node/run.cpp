@@ -14,6 +14,7 @@
 #include "node/snapshots.hpp"
 #endif
 #include "node/simulation.hpp"
+#include "node/checkpoint.hpp"
 #include "node/state_dump.hpp"
 #include "node/track_log.hpp"
 // --- network ---
@@ -167,6 +168,37 @@ int run_command(const RunOptions& opt) {
                  "time): nothing left to join\n", *o.start_at, wall_now() - *o.start_at, ticks * o.dt);
     return 2;
   }
+  // --checkpoint: a join puts back the own vehicles of this exercise's checkpoint (checked here,
+  // before anything is written); every run keeps it up to date as it goes.
+  const CheckpointKey ck_key{o.exercise, o.node, o.start_at, o.dt, scenario_digest(o.scenario)};
+  std::optional<Checkpoint> restore;
+  if (!o.checkpoint.empty()) {
+    try {
+      ensure_writable_dir(o.checkpoint.has_parent_path() ? o.checkpoint.parent_path() : ".", "--checkpoint");
+      std::error_code ec;
+      if (std::filesystem::is_directory(o.checkpoint, ec))
+        throw OutputError("--checkpoint " + o.checkpoint.string() + ": is a directory, not a file");
+    } catch (const OutputError& e) {
+      std::fprintf(stderr, "npsnet: %s\n", e.what());
+      return 2;
+    }
+    if (joining) {
+      try {
+        restore = read_checkpoint(o.checkpoint);
+        if (restore) checkpoint_slots(w, *restore, o.checkpoint);
+      } catch (const world::InputError& e) {
+        print_problems(e);
+        return 2;
+      }
+      const std::string other = restore ? checkpoint_mismatch(*restore, ck_key) : "";
+      const long join_at = join_ticks(*o.start_at, o.dt);
+      if (restore && (!other.empty() || restore->frame > join_at)) {
+        std::fprintf(stderr, "npsnet: --checkpoint %s: not used (%s); it will be overwritten\n", o.checkpoint.string().c_str(),
+                       other.empty() ? "taken after the exercise's current time" : other.c_str());
+        restore.reset();
+      }
+    }
+  }
   const bool has_player = o.window || !o.drive.empty() || !o.input.empty() || !o.record_input.empty();
   const auto same_file = [](const std::filesystem::path& a, const std::filesystem::path& b) {
     std::error_code ea, eb;  // never throws: a name the system cannot resolve is compared as written
@@ -282,6 +314,8 @@ int run_command(const RunOptions& opt) {
     while (wall_now() < *o.start_at) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   std::unique_ptr<TrackLog> track;  // --track-every
   if (o.track_every) track = std::make_unique<TrackLog>(*o.track_every, o.dt);
+  std::unique_ptr<CheckpointWriter> checkpoint;  // --checkpoint
+  if (!o.checkpoint.empty()) checkpoint = std::make_unique<CheckpointWriter>(o.checkpoint, ck_key);
   bool state_written = o.state_out.empty();  // --state-out: written once, at --state-at or the end
   const auto write_state_due = [&] {
     if (!state_written && o.state_at && sim.world().t >= *o.state_at - 1e-9) {
@@ -307,6 +341,11 @@ int run_command(const RunOptions& opt) {
     try {
       for (long i = 0; i < first; ++i) {
         sim.tick();
+        if (restore && sim.world().frame == restore->frame) {
+          const int n = restore_checkpoint(sim, *restore, o.checkpoint);
+          std::fprintf(stderr, "npsnet: --checkpoint %s: %d vehicle(s) put back as they were at t = %.2f s\n",
+                         o.checkpoint.string().c_str(), n, restore->t);
+        }
         write_state_due();
       }
     } catch (const OutputError& e) {
@@ -370,6 +409,7 @@ int run_command(const RunOptions& opt) {
       sim.tick();
 #endif
       if (track) track->after_tick(sim.world(), log);
+      if (checkpoint) checkpoint->after_tick(sim.world());
       write_state_due();
       if (paced) {  // the tick's work ended this long past its deadline (0: on time)
         const auto now = std::chrono::steady_clock::now();

@@ -105,6 +105,8 @@ class Simulation {
   // joined; their craters arrive from the network (node/repeat_ledger.hpp).
   void hold_fire(bool held) { fire_held_ = held; }
   int find_entity(const std::string& id) const;
+  // Entity e was put somewhere else between ticks (node/checkpoint.hpp): no turn over the move.
+  void placed(int e) { detector_.forget_turn(e); }
 
  private:
   void scheduled_fires();

@@ -9,6 +9,9 @@
 // --start-at T0 (the late joiner). Every node runs to T0 + 30 s and writes its world at t = 29 s.
 // Before this change the restarted node replayed its scenario from t = 0 (s3 fired both rounds
 // again) and dropped the adopted repeats of its own rounds as an identity clash.
+// Node 3 keeps a --checkpoint (node/checkpoint.hpp) and logs its vehicles every second
+// (--track-every 1): its APC b3, killed running into node 1's k1 at ~5 s, comes back a wreck at the
+// place it was killed (the catch-up alone drives it on along its route: 40 km/h north).
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -26,6 +29,7 @@ std::vector<std::string> args(int port, int node, double start_at, const std::fi
                               const std::string& tag) {
   auto a = lan::node_args("faults.toml", port, node, start_at, kRunS, dir, tag);
   a.insert(a.end(), {"--state-out", (dir / ("state_" + tag + ".json")).string(), "--state-at", "29"});
+  if (node == 3) a.insert(a.end(), {"--checkpoint", (dir / "checkpoint_3.jsonl").string(), "--track-every", "1"});
   return a;
 }
 json state(const std::filesystem::path& dir, const std::string& tag) {
@@ -78,6 +82,18 @@ TEST(Join, RestartedNodeAndLateJoinerJoinAtTheExerciseTimeAndLearnThePast) {
     for (const auto& f : of_type(ev3, "fire"))  // g1's round (node 1, t = 14 s) may arrive as a remote fire
       EXPECT_TRUE(f.value("remote", false)) << f.dump() << ": its rounds of t = 2 s and 10 s are not fired again";
     EXPECT_TRUE(of_type(ev3, "id_clash").empty()) << "an adopted repeat of its own round is no identity clash";
+    EXPECT_NE(lan::read_text(dir / "out_3b.txt").find("vehicle(s) put back as they were at t = "), std::string::npos)
+        << lan::read_text(dir / "out_3b.txt");
+    // b3's place: the last sample before the kill, the first after the restart (a wreck: still).
+    json before, after;
+    for (const auto& e : of_type(lan::read_events(dir / "events_3.jsonl"), "track"))
+      if (e.value("id", "") == "b3" && e.value("source", "") == "local") before = e;
+    for (const auto& e : of_type(ev3, "track"))
+      if (e.value("id", "") == "b3" && e.value("source", "") == "local" && after.is_null()) after = e;
+    ASSERT_FALSE(before.is_null());
+    ASSERT_FALSE(after.is_null());
+    EXPECT_GE(before["t"].get<double>(), 8.0) << "b3 was killed at ~5 s, sampled after";
+    EXPECT_EQ(before["pos"], after["pos"]) << before.dump() << " / " << after.dump();
   }
   {
     SCOPED_TRACE("late joiner node 4");
@@ -113,5 +129,30 @@ TEST(Join, StartAtPastTheRunsEndIsBadInput) {
   EXPECT_NE(out.find("--start-at"), std::string::npos) << out;
   EXPECT_NE(out.find("nothing left to join"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "events_1.jsonl"));
+  std::filesystem::remove_all(dir);
+}
+
+// A joining run whose --checkpoint is not a checkpoint, or is a folder: bad input, exit 2,
+// nothing written (the file is read before the event log is opened).
+TEST(Join, ABadCheckpointIsBadInputWritingNothing) {
+  const auto dir = lan::fresh_dir("join_badckpt");
+  std::filesystem::create_directories(dir / "folder");
+  { std::ofstream(dir / "bad.jsonl") << "{\"checkpoint\": 1, \"exercise\": 1}\n"; }
+  lan::Procs procs;
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {(dir / "bad.jsonl").string(), "bad.jsonl:1: node: missing"},
+      {(dir / "folder").string(), "is a directory"},
+  };
+  int i = 0;
+  for (const auto& [file, says] : cases) {
+    const std::string tag = std::to_string(i++);
+    auto a = lan::node_args("faults.toml", lan::random_port(), 1, lan::unix_now() - 5, 20, dir, tag);
+    a.insert(a.end(), {"--checkpoint", file});
+    const int pid = procs.start(a, dir / ("out_" + tag + ".txt"));
+    EXPECT_EQ(procs.wait(pid, 30.0), 2);
+    const std::string out = lan::read_text(dir / ("out_" + tag + ".txt"));
+    EXPECT_NE(out.find(says), std::string::npos) << out;
+    EXPECT_FALSE(std::filesystem::exists(dir / ("events_" + tag + ".jsonl"))) << "nothing written on bad input";
+  }
   std::filesystem::remove_all(dir);
 }

@@ -17,6 +17,13 @@
 //    m2 passes within the blast radius of that point (it was 90 m away when the round fell). The
 //    firer's repeat destroys v2 again (the direct hit the PDU names; this healed before), and
 //    blasts none of node 2's vehicles: before, m2 was damaged by a round that fell 7 s earlier.
+//  * With --checkpoint (node/checkpoint.hpp; Wire::keep_checkpoint): the catch-up puts the own
+//    vehicles back as the checkpoint has them. lan.toml, node 2 restarted: a2 comes back a wreck
+//    where it was killed (without it: more than 50 m on, where its route took it). restart_blast.toml:
+//    node 2's parked d2 was damaged by the blast of the round that hit v2; it comes back damaged
+//    (without it: intact, the Detonation names only v2). Each test runs the same exercise
+//    without the checkpoint too and asserts the old answer, so it fails if the restore does not
+//    happen.
 #include <gtest/gtest.h>
 
 #include "wire_support.hpp"
@@ -27,6 +34,7 @@ namespace {
 
 const std::string kLan = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/lan.toml";
 const std::string kRestart = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/restart.toml";
+const std::string kRestartBlast = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/restart_blast.toml";
 constexpr double kTimeoutS = 2.4;  // heartbeat 1 s (Annex C ratio 5:12)
 constexpr int kKillAt = 40, kDeadFor = 40, kAfter = 40;  // ticks of 0.1 s
 
@@ -39,14 +47,19 @@ int count(const std::vector<nlohmann::json>& ev, const std::string& type, const 
   return n;
 }
 
+// Node k (run kKillAt ticks) killed, kDeadFor ticks on, restarted, kAfter ticks on.
+void kill_restart(test::Wire& wire, int k) {
+  wire.kill(k);
+  wire.run(kDeadFor);
+  wire.restart(k, kKillAt + kDeadFor);
+  wire.run(kAfter);
+}
+
 // Runs lan.toml with node `restarted` killed at kKillAt and restarted kDeadFor ticks later.
 void kill_and_restart(test::Wire& wire, int restarted) {
   wire.run(kKillAt);
   ASSERT_EQ(count(wire.events(restarted), "collision", "t1/a2"), 1) << "t1 and a2 collided before the kill";
-  wire.kill(restarted);
-  wire.run(kDeadFor);
-  wire.restart(restarted, kKillAt + kDeadFor);
-  wire.run(kAfter);
+  kill_restart(wire, restarted);
 }
 
 }  // namespace
@@ -86,10 +99,7 @@ TEST(RestartedNode, ItsVehicleKilledByADeadNodesAdoptedCollisionComesBackKilled)
   wire.run(kKillAt);
   ASSERT_EQ(count(wire.events(3), "collision", "t1/a2"), 1) << "node 3 recorded node 1's collision";
   wire.kill(1);
-  wire.kill(2);
-  wire.run(kDeadFor);
-  wire.restart(2, kKillAt + kDeadFor);
-  wire.run(kAfter);
+  kill_restart(wire, 2);
   auto& n2 = wire.node(2);
   const int a2 = n2.index("a2");
   EXPECT_EQ(n2.world().ents.state[a2], test::destroyed(n2, "a2")) << "node 3's adopted repeat names a2 killed";
@@ -106,12 +116,63 @@ TEST(RestartedNode, APastRoundDestroysTheVehicleItHitAndBlastsNoneOfOurs) {
     ASSERT_EQ(n2.world().ents.state[n2.index("v2")], test::destroyed(n2, "v2")) << "g1's round hit v2";
     ASSERT_EQ(n2.world().ents.state[n2.index("m2")], 0) << "m2 was out of the blast";
   }
-  wire.kill(2);
-  wire.run(kDeadFor);
-  wire.restart(2, kKillAt + kDeadFor);
-  wire.run(kAfter);
+  kill_restart(wire, 2);
   auto& n2 = wire.node(2);
   EXPECT_EQ(n2.world().ents.state[n2.index("v2")], test::destroyed(n2, "v2")) << "the repeated Detonation names v2 hit";
   EXPECT_EQ(n2.world().ents.state[n2.index("m2")], 0) << "m2 was 90 m away when the round fell";
   EXPECT_EQ(count(wire.events(2), "detonation"), 1) << "applied once";
+}
+
+TEST(RestartedNode, WithACheckpointItsKilledVehicleComesBackWhereItStood) {
+  Vec3 wreck[2];
+  for (const bool keep : {false, true}) {
+    test::Wire wire(kLan, 2, keep ? "ckpt_wreck" : "ckpt_wreck_none", kTimeoutS,
+                    [](int, int, const std::vector<std::uint8_t>&) { return 1; });
+    if (keep) wire.keep_checkpoint(2);
+    wire.run(kKillAt);
+    {
+      auto& n2 = wire.node(2);
+      const int a2 = n2.index("a2");
+      ASSERT_EQ(n2.world().ents.state[a2], test::destroyed(n2, "a2")) << "t1 and a2 killed each other at ~3 s";
+      wreck[keep] = n2.world().ents.pos[a2];
+    }
+    kill_restart(wire, 2);
+    auto& n2 = wire.node(2);
+    const int a2 = n2.index("a2");
+    EXPECT_EQ(n2.world().ents.state[a2], test::destroyed(n2, "a2"));
+    EXPECT_EQ(n2.world().ents.vel[a2], Vec3::Zero());
+    const Vec3 here = n2.world().ents.pos[a2];
+    auto& n1 = wire.node(1);
+    const Vec3 copy = n1.world().ents.pos[n1.index("a2")];
+    if (keep) {
+      EXPECT_EQ(here, wreck[keep]) << "the wreck is back where it was killed, to the bit";
+      EXPECT_LT((copy - wreck[keep]).norm(), 0.5) << "node 1 sees it there too";
+      EXPECT_EQ(count(wire.events(2), "collision", "t1/a2"), 1) << "and the collision is not applied twice";
+    } else {
+      EXPECT_GT((here - wreck[keep]).norm(), 50.0) << "without the checkpoint the catch-up drove a2 on along its route";
+    }
+  }
+  EXPECT_EQ(wreck[0], wreck[1]) << "both runs are the same exercise until the kill";
+}
+
+TEST(RestartedNode, WithACheckpointItsBlastDamagedVehicleComesBackDamaged) {
+  for (const bool keep : {false, true}) {
+    test::Wire wire(kRestartBlast, 2, keep ? "ckpt_blast" : "ckpt_blast_none", kTimeoutS,
+                    [](int, int, const std::vector<std::uint8_t>&) { return 1; });
+    if (keep) wire.keep_checkpoint(2);
+    wire.run(kKillAt);
+    {
+      auto& n2 = wire.node(2);
+      ASSERT_EQ(n2.world().ents.state[n2.index("v2")], test::destroyed(n2, "v2")) << "g1's round hit v2";
+      ASSERT_EQ(n2.world().ents.state[n2.index("d2")], 1) << "its blast damaged d2, 25 m away";
+    }
+    kill_restart(wire, 2);
+    auto& n2 = wire.node(2);
+    auto& n1 = wire.node(1);
+    EXPECT_EQ(n2.world().ents.state[n2.index("v2")], test::destroyed(n2, "v2"));
+    EXPECT_EQ(n2.world().ents.state[n2.index("d2")], keep ? 1 : 0)
+        << (keep ? "the checkpoint keeps d2's blast damage" : "without it the restart forgets it (the old answer)");
+    EXPECT_EQ(n1.world().ents.state[n1.index("d2")], keep ? 1 : 0) << "node 1 sees what node 2 now says";
+    EXPECT_EQ(count(wire.events(2), "detonation"), 1) << "the repeated Detonation is applied once";
+  }
 }

@@ -12,12 +12,14 @@
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "node/bridge_options.hpp"
+#include "node/checkpoint.hpp"
 #include "node/event_log.hpp"
 #include "node/net_bridge.hpp"
 #include "node/simulation.hpp"
@@ -33,6 +35,8 @@ struct WiredNode {
   std::unique_ptr<node::Simulation> sim;
   std::unique_ptr<node::NetBridge> bridge;
   std::deque<std::vector<std::uint8_t>> inbox;
+  std::filesystem::path checkpoint_file;               // keep_checkpoint: node/checkpoint.hpp
+  std::unique_ptr<node::CheckpointWriter> checkpoint;  // written after each of its live ticks
   const world::World& world() const { return sim->world(); }
   int index(const std::string& id_) const { return sim->find_entity(id_); }
 };
@@ -48,6 +52,7 @@ class Wire {
       : deliver_(std::move(deliver)),
         tag_(tag),
         timeout_s_(timeout_s),
+        scenario_file_(scenario_file),
         scenario_(world::load_scenario(scenario_file)),
         world_(world::build_world(scenario_)) {
     for (int k = 1; k <= n; ++k) nodes_.push_back(make_node(k, tag + "_n" + std::to_string(k)));
@@ -56,24 +61,49 @@ class Wire {
   void run(int ticks) {
     for (int i = 0; i < ticks; ++i)
       for (auto& nd : nodes_)
-        if (nd->sim) nd->sim->tick();
+        if (nd->sim) {
+          nd->sim->tick();
+          if (nd->checkpoint) nd->checkpoint->after_tick(nd->world());
+        }
   }
+  // Node k keeps its own vehicles in a checkpoint file (run.cpp's --checkpoint), which its
+  // restarts read and keep writing.
+  void keep_checkpoint(int k) {
+    WiredNode& nd = node(k);
+    nd.checkpoint_file = scratch_dir() / (tag_ + "_n" + std::to_string(k) + ".checkpoint.jsonl");
+    std::filesystem::remove(nd.checkpoint_file);
+    nd.checkpoint = std::make_unique<node::CheckpointWriter>(nd.checkpoint_file, checkpoint_key(k));
+  }
+  node::CheckpointKey checkpoint_key(int k) const { return {1, k, std::nullopt, 0.1, node::scenario_digest(scenario_file_)}; }
   // Node k dies (SIGKILL): it ticks no more, sends nothing, and what is sent to it is lost.
   void kill(int k) {
     WiredNode& nd = node(k);
     nd.bridge.reset();
     nd.sim.reset();
+    nd.checkpoint.reset();  // what it wrote stays on disk
     nd.inbox.clear();
   }
   // Node k starts again (a new process with the same numbers, run.cpp's join): it catches its
   // own scenario up headless (no network, no event log, no fire) for the `ticks` the exercise has
   // run, then goes live. Its new events go to a new log (events of node k: this one's).
+  // With keep_checkpoint(k), as run.cpp's --checkpoint: the catch-up puts the checkpoint's
+  // vehicles back at its frame (when it is this exercise's and not after the join).
   void restart(int k, int ticks) {
     auto nd = make_node(k, tag_ + "_n" + std::to_string(k) + "_restart");
+    std::optional<node::Checkpoint> restore;
+    if (!node(k).checkpoint_file.empty()) {
+      nd->checkpoint_file = node(k).checkpoint_file;
+      restore = node::read_checkpoint(nd->checkpoint_file);
+      if (restore && (!node::checkpoint_mismatch(*restore, checkpoint_key(k)).empty() || restore->frame > ticks)) restore.reset();
+      nd->checkpoint = std::make_unique<node::CheckpointWriter>(nd->checkpoint_file, checkpoint_key(k));
+    }
     nd->log->mute(true);
     nd->sim->hold_fire(true);
     nd->bridge->catch_up(true);
-    for (int i = 0; i < ticks; ++i) nd->sim->tick();
+    for (int i = 0; i < ticks; ++i) {
+      nd->sim->tick();
+      if (restore && nd->world().frame == restore->frame) node::restore_checkpoint(*nd->sim, *restore, nd->checkpoint_file);
+    }
     nd->bridge->catch_up(false);
     nd->sim->hold_fire(false);
     nd->log->mute(false);
@@ -124,6 +154,7 @@ class Wire {
   Deliver deliver_;
   std::string tag_;
   double timeout_s_;
+  std::string scenario_file_;
   world::Scenario scenario_;
   world::World world_;
   std::vector<std::unique_ptr<WiredNode>> nodes_;

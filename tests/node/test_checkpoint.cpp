@@ -1,0 +1,164 @@
+// The own vehicles' checkpoint file (node/checkpoint.hpp): what is written is read back bit for
+// bit, bad files are refused with FILE:LINE: field: message, a checkpoint of another exercise is
+// told apart, and the writer writes when a vehicle's damage changes and every second otherwise.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "node/checkpoint.hpp"
+#include "node/event_log.hpp"
+#include "node/simulation.hpp"
+#include "support/scratch.hpp"
+#include "world/error.hpp"
+#include "world/scenario.hpp"
+
+using namespace npsnet;
+
+namespace {
+
+const std::string kLan = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/lan.toml";
+
+std::filesystem::path write_text(const std::string& name, const std::string& text) {
+  const auto p = test::scratch_dir() / name;
+  std::ofstream(p, std::ios::binary) << text;
+  return p;
+}
+
+std::string problem_of(const std::filesystem::path& p) {
+  try {
+    (void)node::read_checkpoint(p);
+  } catch (const world::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+node::CheckpointKey key_of(int node) { return {1, node, 1.7e9, 0.1, node::scenario_digest(kLan)}; }
+
+}  // namespace
+
+TEST(Checkpoint, WhatIsWrittenIsReadBackBitForBit) {
+  const auto sc = world::load_scenario(kLan);
+  node::EventLog log;
+  node::Simulation sim(world::build_world(sc), sc, log, 0.1);
+  for (int i = 0; i < 17; ++i) sim.tick();  // odd positions, headings, pitches
+  const auto key = key_of(2);
+  const node::Checkpoint c = node::take_checkpoint(sim.world(), key);
+  ASSERT_EQ(c.vehicles.size(), 3u) << "lan.toml: node 2 has a2, h2 and a2b";
+  const auto file = test::scratch_dir() / "ckpt_roundtrip.jsonl";
+  node::write_checkpoint(file, c);
+  EXPECT_FALSE(std::filesystem::exists(file.string() + ".tmp")) << "renamed into place";
+  const auto r = node::read_checkpoint(file);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->key, key);
+  EXPECT_EQ(r->frame, 17);
+  EXPECT_EQ(r->t, sim.world().t);
+  EXPECT_EQ(node::checkpoint_mismatch(*r, key), "");
+  ASSERT_EQ(r->vehicles.size(), c.vehicles.size());
+  for (size_t i = 0; i < c.vehicles.size(); ++i) {
+    const auto &a = c.vehicles[i], &b = r->vehicles[i];
+    EXPECT_EQ(a.id, b.id);
+    EXPECT_EQ(a.kind, b.kind);
+    EXPECT_EQ(a.pos, b.pos);
+    EXPECT_EQ(a.vel, b.vel);
+    EXPECT_EQ(a.heading, b.heading);
+    EXPECT_EQ(a.pitch, b.pitch);
+    EXPECT_EQ(a.roll, b.roll);
+    EXPECT_EQ(a.cruise_mps, b.cruise_mps);
+    EXPECT_EQ(a.max_mps, b.max_mps);
+    EXPECT_EQ(a.fuel_l, b.fuel_l);
+    EXPECT_EQ(a.rounds, b.rounds);
+    EXPECT_EQ(a.leg, b.leg);
+  }
+  // Put back into a fresh world at frame 0: the vehicles are where the checkpoint has them.
+  node::Simulation fresh(world::build_world(sc), sc, log, 0.1);
+  EXPECT_EQ(node::restore_checkpoint(fresh, *r, file), 3);
+  const int a2 = fresh.find_entity("a2");
+  EXPECT_EQ(fresh.world().ents.pos[a2], sim.world().ents.pos[sim.find_entity("a2")]);
+  EXPECT_EQ(fresh.world().ents.heading_deg[a2], sim.world().ents.heading_deg[sim.find_entity("a2")]);
+}
+
+TEST(Checkpoint, AnotherExercisesCheckpointIsToldApart) {
+  node::Checkpoint c;
+  c.key = key_of(2);
+  auto k = c.key;
+  EXPECT_EQ(node::checkpoint_mismatch(c, k), "");
+  k.start_at = 1.8e9;
+  EXPECT_NE(node::checkpoint_mismatch(c, k).find("--start-at"), std::string::npos);
+  k = c.key, k.node = 3;
+  EXPECT_NE(node::checkpoint_mismatch(c, k).find("node 2, not 3"), std::string::npos);
+  k = c.key, k.scenario = "0000000000000000";
+  EXPECT_NE(node::checkpoint_mismatch(c, k).find("another scenario"), std::string::npos);
+  k = c.key, k.dt = 0.05;
+  EXPECT_NE(node::checkpoint_mismatch(c, k).find("--dt"), std::string::npos);
+}
+
+TEST(Checkpoint, BadFilesAreRefusedWithTheirLineAndField) {
+  EXPECT_FALSE(node::read_checkpoint(test::scratch_dir() / "no_such_checkpoint.jsonl")) << "none: nothing to put back";
+  const std::string head =
+      R"({"checkpoint":1,"exercise":1,"node":2,"start_at":null,"dt":0.1,"scenario":"x","frame":5,"t":0.5,"vehicles":1})";
+  const std::string veh =
+      R"({"id":"a2","kind":"bmp","state":0,"active":true,"pos":[1,2,3],"vel":[0,0,0],"hpr":[0,0,0],"cruise_mps":11,"max_mps":18,"fuel_l":100,"rounds":10,"leg":0,"flee_until":0,"calm_until":0})";
+  EXPECT_EQ(problem_of(write_text("ck_ok.jsonl", head + "\n" + veh + "\n")), "");
+  EXPECT_NE(problem_of(write_text("ck_empty.jsonl", "")).find("ck_empty.jsonl:0: file: empty"), std::string::npos);
+  EXPECT_NE(problem_of(write_text("ck_text.jsonl", "hello\n")).find("ck_text.jsonl:1: line: not a JSON object"), std::string::npos);
+  std::string bad = veh;
+  bad.replace(bad.find("[1,2,3]"), 7, "[1,2]");
+  EXPECT_NE(problem_of(write_text("ck_pos.jsonl", head + "\n" + bad + "\n")).find("ck_pos.jsonl:2: pos: must be [a, b, c]"),
+            std::string::npos);
+  bad = veh;
+  bad.replace(bad.find("\"state\":0"), 9, "\"state\":-1");
+  EXPECT_NE(problem_of(write_text("ck_state.jsonl", head + "\n" + bad + "\n")).find(":2: state: must be 0 to 255"),
+            std::string::npos);
+  bad = veh;
+  bad.replace(bad.find("\"cruise_mps\":11"), 15, "\"cruise_mps\":1e999");
+  EXPECT_NE(problem_of(write_text("ck_inf.jsonl", head + "\n" + bad + "\n")).find(":2:"), std::string::npos);
+  EXPECT_NE(problem_of(write_text("ck_count.jsonl", head + "\n")).find(":1: vehicles: says 1, the file has 0"),
+            std::string::npos);
+  std::string h2 = head;
+  h2.replace(h2.find("\"checkpoint\":1"), 14, "\"checkpoint\":7");
+  EXPECT_NE(problem_of(write_text("ck_format.jsonl", h2 + "\n" + veh + "\n")).find(":1: checkpoint: format 7 is not 1"),
+            std::string::npos);
+  // A vehicle the world does not have as node 2's: the restore names it, before anything moves.
+  const auto sc = world::load_scenario(kLan);
+  node::EventLog log;
+  node::Simulation sim(world::build_world(sc), sc, log, 0.1);
+  std::string other = veh;
+  other.replace(other.find("\"a2\""), 4, "\"t1\"");
+  const auto f = write_text("ck_t1.jsonl", head + "\n" + other + "\n");
+  const auto c = node::read_checkpoint(f);
+  ASSERT_TRUE(c);
+  try {
+    node::restore_checkpoint(sim, *c, f);
+    ADD_FAILURE() << "t1 is node 1's";
+  } catch (const world::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("ck_t1.jsonl:2: id: 't1' is no vehicle of node 2 here"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Checkpoint, TheWriterWritesOnADamageChangeAndEverySecond) {
+  const auto sc = world::load_scenario(kLan);
+  node::EventLog log;
+  node::Simulation sim(world::build_world(sc), sc, log, 0.1);
+  const auto file = test::scratch_dir() / "ckpt_writer.jsonl";
+  std::filesystem::remove(file);
+  node::CheckpointWriter writer(file, key_of(2));
+  int writes_at_kill = -1;
+  for (int i = 0; i < 50; ++i) {
+    const int before = sim.world().ents.state[sim.find_entity("a2")];
+    sim.tick();
+    const int w0 = writer.writes();
+    writer.after_tick(sim.world());
+    if (sim.world().ents.state[sim.find_entity("a2")] != before) {
+      writes_at_kill = writer.writes();
+      EXPECT_EQ(writer.writes(), w0 + 1) << "a2's damage changed at tick " << i << ": written at once";
+      const auto c = node::read_checkpoint(file);
+      ASSERT_TRUE(c);
+      EXPECT_EQ(c->frame, sim.world().frame);
+    }
+  }
+  EXPECT_GT(writes_at_kill, 0) << "t1 and a2 collide in lan.toml";
+  // One at the first tick, one a second after each, one for the kill: 5 s -> 6 or 7.
+  EXPECT_GE(writer.writes(), 6);
+  EXPECT_LE(writer.writes(), 7);
+}
