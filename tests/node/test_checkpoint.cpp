@@ -3,7 +3,9 @@
 // told apart, and the writer writes when a vehicle's damage changes and every second otherwise.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <iterator>
 
 #include "node/checkpoint.hpp"
 #include "node/event_log.hpp"
@@ -45,6 +47,19 @@ TEST(Checkpoint, WhatIsWrittenIsReadBackBitForBit) {
   const auto key = key_of(2);
   const node::Checkpoint c = node::take_checkpoint(sim.world(), key);
   ASSERT_EQ(c.vehicles.size(), 3u) << "lan.toml: node 2 has a2, h2 and a2b";
+  // Signed zeros and extreme values keep their bits too.
+  node::Checkpoint odd = c;
+  odd.vehicles[0].vel = Vec3(-0.0, 4.9406564584124654e-324, -13888.888888888889);
+  odd.vehicles[0].roll = -0.0f, odd.vehicles[0].pitch = 1.17549435e-38f;
+  const auto odd_file = test::scratch_dir() / "ckpt_odd.jsonl";
+  node::write_checkpoint(odd_file, odd);
+  const auto odd_back = node::read_checkpoint_text(
+      [&] { std::ifstream in(odd_file); return std::string(std::istreambuf_iterator<char>(in), {}); }(), "odd");
+  EXPECT_EQ(std::signbit(odd_back.vehicles[0].vel.x()), true) << "-0.0 stays -0.0";
+  EXPECT_EQ(odd_back.vehicles[0].vel.y(), 4.9406564584124654e-324) << "the smallest subnormal";
+  EXPECT_EQ(odd_back.vehicles[0].vel.z(), -13888.888888888889);
+  EXPECT_EQ(std::signbit(odd_back.vehicles[0].roll), true);
+  EXPECT_EQ(odd_back.vehicles[0].pitch, 1.17549435e-38f);
   const auto file = test::scratch_dir() / "ckpt_roundtrip.jsonl";
   node::write_checkpoint(file, c);
   EXPECT_FALSE(std::filesystem::exists(file.string() + ".tmp")) << "renamed into place";
