@@ -30,6 +30,9 @@ constexpr double kMaxMps = world::kMaxSpeedKmh / 3.6;
 bool own(const world::World& w, size_t e, int node) {
   return w.ents.local[e] && w.ents.node[e] == node && !w.is_munition(e);
 }
+bool own_round(const world::World& w, size_t e, int node) {
+  return w.ents.local[e] && w.ents.active[e] && w.ents.node[e] == node && w.is_munition(e);
+}
 
 // Appends key and the number (integers as integers, doubles as the shortest text that reads back
 // as the same double; JSON has no inf or nan, and nothing written here is either).
@@ -118,7 +121,7 @@ std::string scenario_digest(const std::filesystem::path& file) {
   return hex;
 }
 
-Checkpoint take_checkpoint(const world::World& w, const CheckpointKey& key) {
+Checkpoint take_checkpoint(const world::World& w, const CheckpointKey& key, const RoundIdentity& identity) {
   Checkpoint c;
   c.key = key;
   c.frame = w.frame;
@@ -136,6 +139,16 @@ Checkpoint take_checkpoint(const world::World& w, const CheckpointKey& key) {
     v.flee_until = ents.flee_until[e], v.calm_until = ents.calm_until[e];
     c.vehicles.push_back(std::move(v));
   }
+  if (identity)
+    for (size_t m = 0; m < ents.size(); ++m) {
+      CheckpointRound r;
+      if (!own_round(w, m, key.node) || !identity(static_cast<int>(m), r)) continue;
+      r.id = ents.id[m], r.kind = w.kind_of_entity(m).name;
+      r.shooter = ents.owner[m] >= 0 ? ents.id[ents.owner[m]] : "";
+      r.target = ents.target[m] >= 0 ? ents.id[ents.target[m]] : "";
+      r.pos = ents.pos[m], r.vel = ents.vel[m], r.aim = ents.aim[m];
+      c.rounds.push_back(std::move(r));
+    }
   return c;
 }
 
@@ -155,7 +168,8 @@ void write_checkpoint(const std::filesystem::path& file, const Checkpoint& c) {
                        {"scenario", c.key.scenario},
                        {"frame", c.frame},
                        {"t", c.t},
-                       {"vehicles", c.vehicles.size()}};
+                       {"vehicles", c.vehicles.size()},
+                       {"rounds", c.rounds.size()}};
     f << head.dump() << '\n';
     // The vehicle lines by hand (nlohmann's objects cost ~10 us a vehicle): numbers by
     // std::to_chars, the shortest text that reads back as the same double (floats written as
@@ -181,6 +195,22 @@ void write_checkpoint(const std::filesystem::path& file, const Checkpoint& c) {
       line += "}\n";
       f << line;
     }
+    for (const auto& r : c.rounds) {
+      line.clear();
+      line += "{\"round\":" + json(r.id).dump(-1, ' ', false, json::error_handler_t::replace);
+      line += ",\"kind\":" + json(r.kind).dump(-1, ' ', false, json::error_handler_t::replace);
+      line += ",\"shooter\":" + json(r.shooter).dump(-1, ' ', false, json::error_handler_t::replace);
+      line += ",\"target\":" + json(r.target).dump(-1, ' ', false, json::error_handler_t::replace);
+      put3(line, ",\"pos\":[", r.pos.x(), r.pos.y(), r.pos.z());
+      put3(line, ",\"vel\":[", r.vel.x(), r.vel.y(), r.vel.z());
+      put3(line, ",\"aim\":[", r.aim.x(), r.aim.y(), r.aim.z());
+      put(line, ",\"event\":", r.event);
+      put(line, ",\"site\":", r.site);
+      put(line, ",\"application\":", r.application);
+      put(line, ",\"entity\":", r.entity);
+      line += "}\n";
+      f << line;
+    }
     f.flush();
     if (!f) throw OutputError(what + ": cannot write " + tmp + " (disk full?)");
   }
@@ -201,7 +231,7 @@ std::optional<Checkpoint> read_checkpoint(const std::filesystem::path& file) {
 Checkpoint read_checkpoint_text(std::string_view bytes, const std::string& name) {
   std::istringstream in{std::string(bytes)};
   Checkpoint c;
-  size_t want = 0;
+  size_t want = 0, want_rounds = 0;
   int ln = 0;
   for (std::string text; std::getline(in, text);) {
     ++ln;
@@ -223,6 +253,23 @@ Checkpoint read_checkpoint_text(std::string_view bytes, const std::string& name)
       c.frame = l.integer("frame", 0, 1L << 50);
       c.t = l.number("t");
       want = static_cast<size_t>(l.integer("vehicles", 0, 1L << 30));
+      want_rounds = j.contains("rounds") ? static_cast<size_t>(l.integer("rounds", 0, 1L << 30)) : 0;
+      continue;
+    }
+    if (c.vehicles.size() == want) {  // the rounds follow the vehicles
+      if (c.rounds.size() == want_rounds) l.fail("line", "more lines than the header's vehicles and rounds");
+      CheckpointRound r;
+      r.id = l.text("round"), r.kind = l.text("kind"), r.shooter = l.text("shooter"), r.target = l.text("target");
+      const auto p = l.triple("pos"), u = l.triple("vel"), a = l.triple("aim");
+      if (std::fabs(p[2]) > world::kMaxHeightM) l.fail("pos", "height beyond +-" + std::to_string(world::kMaxHeightM) + " m");
+      if (std::fabs(a[2]) > world::kMaxHeightM) l.fail("aim", "height beyond +-" + std::to_string(world::kMaxHeightM) + " m");
+      r.pos = Vec3(p[0], p[1], p[2]), r.vel = Vec3(u[0], u[1], u[2]), r.aim = Vec3(a[0], a[1], a[2]);
+      if (r.vel.norm() > kMaxMps) l.fail("vel", "faster than " + std::to_string(world::kMaxSpeedKmh) + " km/h");
+      r.event = static_cast<int>(l.integer("event", 0, 65535));
+      r.site = static_cast<int>(l.integer("site", 0, 65535));
+      r.application = static_cast<int>(l.integer("application", 0, 65535));
+      r.entity = static_cast<int>(l.integer("entity", 0, 65535));
+      c.rounds.push_back(std::move(r));
       continue;
     }
     CheckpointVehicle v;
@@ -250,6 +297,9 @@ Checkpoint read_checkpoint_text(std::string_view bytes, const std::string& name)
   if (c.vehicles.size() != want)
     throw world::InputError(name, 1, "vehicles", "says " + std::to_string(want) + ", the file has " +
                                                      std::to_string(c.vehicles.size()));
+  if (c.rounds.size() != want_rounds)
+    throw world::InputError(name, 1, "rounds", "says " + std::to_string(want_rounds) + ", the file has " +
+                                                   std::to_string(c.rounds.size()));
   return c;
 }
 
@@ -286,14 +336,38 @@ std::vector<int> checkpoint_slots(const world::World& w, const Checkpoint& c, co
                                                           std::to_string(k.states.size()) + " states"});
     else where[i] = e;
   }
+  for (size_t i = 0; i < c.rounds.size(); ++i) {
+    const auto& r = c.rounds[i];
+    const int ln = static_cast<int>(c.vehicles.size() + i) + 2;
+    const auto it = slot.find(r.shooter);
+    const int k = w.kinds.find(r.kind);
+    if (it == slot.end() || !own(w, static_cast<size_t>(it->second), c.key.node))
+      problems.push_back({file.string(), ln, "shooter", "'" + r.shooter + "' is no vehicle of node " + std::to_string(c.key.node) + " here"});
+    else if (k < 0 || w.kinds[k].mobility != world::Mobility::Munition)
+      problems.push_back({file.string(), ln, "kind", "'" + r.kind + "' is not a munition kind"});
+    else if (!w.terrain.contains(r.pos.x(), r.pos.y()))
+      problems.push_back({file.string(), ln, "pos", "(" + std::to_string(r.pos.x()) + ", " + std::to_string(r.pos.y()) + ") is off the map"});
+  }
   if (!problems.empty()) throw world::InputError(std::move(problems));
   return where;
 }
 
-int restore_checkpoint(Simulation& sim, const Checkpoint& c, const std::filesystem::path& file) {
+std::vector<int> restore_checkpoint(Simulation& sim, const Checkpoint& c, const std::filesystem::path& file) {
   world::World& w = sim.world();
   auto& ents = w.ents;
   const std::vector<int> where = checkpoint_slots(w, c, file);
+  // The rounds first (a launch takes a round from its shooter; the vehicles' counts come after).
+  std::vector<int> rounds;
+  for (const auto& r : c.rounds) {
+    world::Launch l;
+    l.shooter = sim.find_entity(r.shooter);
+    l.kind = w.kinds.find(r.kind);
+    l.target = r.target.empty() ? -1 : sim.find_entity(r.target);  // absent (remote): flies on unguided
+    l.muzzle = r.pos, l.vel = r.vel, l.aim = r.aim;
+    const int m = sim.relaunch(l);
+    ents.id[m] = r.id;
+    rounds.push_back(m);
+  }
   for (size_t i = 0; i < c.vehicles.size(); ++i) {
     const auto& v = c.vehicles[i];
     const int e = where[i];
@@ -305,7 +379,7 @@ int restore_checkpoint(Simulation& sim, const Checkpoint& c, const std::filesyst
     ents.flee_until[e] = v.flee_until, ents.calm_until[e] = v.calm_until;
     sim.placed(e);
   }
-  return static_cast<int>(c.vehicles.size());
+  return rounds;
 }
 
 void CheckpointWriter::after_tick(const world::World& w) {
@@ -313,13 +387,15 @@ void CheckpointWriter::after_tick(const world::World& w) {
   if (sig_.size() < ents.size()) sig_.resize(ents.size(), ~uint64_t{0});
   bool changed = false;
   for (size_t e = 0; e < ents.size(); ++e) {
-    if (!own(w, e, key_.node)) continue;
-    const uint64_t s = uint64_t{ents.state[e]} | uint64_t{ents.active[e]} << 8 |
-                       uint64_t{std::bit_cast<uint32_t>(ents.cruise_mps[e])} << 32;
+    uint64_t s = 0;  // not ours: 0
+    if (own(w, e, key_.node))
+      s = uint64_t{ents.state[e]} | uint64_t{ents.active[e]} << 8 | uint64_t{std::bit_cast<uint32_t>(ents.cruise_mps[e])} << 32;
+    else if (identity_ && own_round(w, e, key_.node))  // a round in flight (fired, or its slot reused)
+      s = uint64_t{1} << 16;  // spent: 0 again, so a slot fired again is a change too
     if (s != sig_[e]) changed = true, sig_[e] = s;
   }
   if (!changed && w.t < last_t_ + kCheckpointEveryS - 1e-9) return;
-  write_checkpoint(file_, take_checkpoint(w, key_));
+  write_checkpoint(file_, take_checkpoint(w, key_, identity_));
   last_t_ = w.t;
   ++writes_;
 }

@@ -12,8 +12,11 @@
 // round-trip bit for bit).
 // Written whole or not at all (FILE.tmp, then rename): a node killed at any moment leaves the
 // previous checkpoint or the new one, never a part.
+// Then, with a RoundIdentity, R lines (header "rounds": R), one round of ours in flight each:
+// {"round", "kind", "shooter", "target", "pos", "vel", "aim", "event", "site", "application", "entity"}.
 // When: after every live tick in which an own vehicle's damage state, activity or wanted speed
-// changed (a kill, a blast, a stop), and at least every kCheckpointEveryS of scenario time.
+// changed (a kill, a blast, a stop) or one of its rounds was fired or spent, and at least every
+// kCheckpointEveryS of scenario time.
 // Use (run.cpp, tests/node/wire_support.hpp): a node joining a running exercise (a restart)
 // whose checkpoint has its key (same exercise, node, --start-at, dt and scenario bytes) catches up
 // headless to the checkpoint's frame, puts those vehicles back (restore_checkpoint), and catches
@@ -22,6 +25,7 @@
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -60,15 +64,31 @@ struct CheckpointVehicle {
   float flee_until = 0, calm_until = 0;
 };
 
+// A round of ours in flight (fired, not yet detonated): its Fire PDU went out, so a restart that
+// puts it back must detonate it under the same DIS identity (the Fire's event number and
+// munition entity id), as the old process would have.
+struct CheckpointRound {
+  std::string id, kind, shooter, target;  // target: an entity id, or "" (a point)
+  Vec3 pos = Vec3::Zero(), vel = Vec3::Zero(), aim = Vec3::Zero();
+  int event = 0;                    // the Fire PDU's event number
+  int site = 0, application = 0, entity = 0;  // the munition's DIS entity id
+};
+
 struct Checkpoint {
   CheckpointKey key;
   int64_t frame = 0;  // the world's frame after the tick it was taken at
   double t = 0;
   std::vector<CheckpointVehicle> vehicles;
+  std::vector<CheckpointRound> rounds;
 };
 
-// The own vehicles of key.node in w, as a checkpoint of w's current frame.
-Checkpoint take_checkpoint(const world::World& w, const CheckpointKey& key);
+// The network identity of our round m (its Fire PDU's event number and munition id), when it
+// has one (the net bridge: NetBridge::round_identity); rounds without one are not kept.
+using RoundIdentity = std::function<bool(int m, CheckpointRound& r)>;
+
+// The own vehicles of key.node in w, and (with `identity`) its rounds in flight, as a checkpoint
+// of w's current frame.
+Checkpoint take_checkpoint(const world::World& w, const CheckpointKey& key, const RoundIdentity& identity = {});
 // Writes c to file (FILE.tmp, then rename). Throws OutputError ("--checkpoint FILE: why").
 void write_checkpoint(const std::filesystem::path& file, const Checkpoint& c);
 // Reads file: nullopt when there is none. Throws world::InputError (FILE:LINE: field: message)
@@ -83,21 +103,33 @@ std::string checkpoint_mismatch(const Checkpoint& c, const CheckpointKey& key);
 // c.key.node, has it as another kind, or with fewer states.
 std::vector<int> checkpoint_slots(const world::World& w, const Checkpoint& c, const std::filesystem::path& file);
 // Puts c's vehicles back into sim's world (each by id: its damage, place, motion and route
-// progress; the detector forgets its last orientation, so the move is no turn), checked as
-// checkpoint_slots does. Returns how many vehicles it put back.
-int restore_checkpoint(Simulation& sim, const Checkpoint& c, const std::filesystem::path& file);
+// progress; the detector forgets its last orientation, so the move is no turn), and its rounds
+// in flight (launched again where and as fast as they were, owner and target by id; a target
+// that is not here, another node's vehicle, makes the round fly on unguided), checked as
+// checkpoint_slots does. Returns the world slot of each of c.rounds (the caller gives them their
+// network identity: NetBridge::adopt_round).
+std::vector<int> restore_checkpoint(Simulation& sim, const Checkpoint& c, const std::filesystem::path& file);
+
+// The net bridge's side (checkpoint_net.cpp; without the net room: no rounds are kept):
+// its rounds' identities as a RoundIdentity, and the rounds restore_checkpoint put back (their
+// slots) given their old identity on it.
+class NetBridge;
+RoundIdentity round_identities(const NetBridge* bridge);
+void adopt_rounds(NetBridge* bridge, const Checkpoint& c, const std::vector<int>& slots);
 
 // After each live tick: writes the checkpoint when it is due (see "When" above).
 class CheckpointWriter {
  public:
-  CheckpointWriter(std::filesystem::path file, CheckpointKey key) : file_(std::move(file)), key_(std::move(key)) {}
+  CheckpointWriter(std::filesystem::path file, CheckpointKey key, RoundIdentity identity = {})
+      : file_(std::move(file)), key_(std::move(key)), identity_(std::move(identity)) {}
   void after_tick(const world::World& w);
   int writes() const { return writes_; }
 
  private:
   std::filesystem::path file_;
   CheckpointKey key_;
-  std::vector<uint64_t> sig_;  // per own vehicle, as last written: state, active, wanted speed
+  RoundIdentity identity_;
+  std::vector<uint64_t> sig_;  // per own entity, as last written: state, active, wanted speed
   double last_t_ = -1e300;
   int writes_ = 0;
 };

@@ -270,6 +270,7 @@ void NetBridge::after_tick(const TickReport& r) {
   now_s_ = clock_s();
   if (catching_up_) {  // the past: our fires are held, remote entities absent; objects noted
     publish_fixed(r);
+    publish_detonations(r);  // only rounds a restart put back: kept for the join
     return;
   }
   publish_fires(r);

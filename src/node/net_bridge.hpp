@@ -149,6 +149,13 @@ class NetBridge {
   // State and every noted object go out at the next tick (a new entity announced at once).
   void catch_up(bool on);
   bool catching_up() const { return catching_up_; }
+  // Our round m's network identity, when its Fire PDU went out: the Fire's event number and the
+  // munition's DIS entity id (node/checkpoint.hpp keeps it for a restart).
+  bool round_identity(int m, std::uint16_t& event, net::EntityId& munition) const;
+  // A restart put our round m back in flight (node/checkpoint.hpp): it detonates under the
+  // identity its Fire PDU gave it. Detonating while the node still catches up, its Detonation goes
+  // out when the node goes live (then repeated as every Detonation of ours).
+  void adopt_round(int m, std::uint16_t event, const net::EntityId& munition);
 
   // The receive path: one datagram's bytes, arrived at arrival_s (bridge clock, s). Any bytes.
   void receive(std::span<const std::uint8_t> datagram, double arrival_s);
@@ -299,6 +306,12 @@ class NetBridge {
   std::vector<int> fixed_slot_;          // per fixed object: its index in fixed_published_, or -1
   std::uint64_t fixed_unnumbered_ = 0;   // changed objects past the last cultural entity number
   std::unordered_map<int, std::uint16_t> fire_event_;  // munition index -> event number
+  std::unordered_map<int, net::EntityId> round_id_;    // adopt_round: munition index -> its old DIS id
+  struct CaughtUpDetonation {
+    net::DetonationPdu pdu;
+    std::uint32_t group;
+  };
+  std::vector<CaughtUpDetonation> caught_up_detonations_;  // sent when the node goes live
   DetonationLedger detonations_;  // ours repeated every heartbeat; received ones applied once
   CollisionLedger collisions_;    // the same for Collision PDUs
   struct WaitingCollision {

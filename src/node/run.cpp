@@ -315,7 +315,11 @@ int run_command(const RunOptions& opt) {
   std::unique_ptr<TrackLog> track;  // --track-every
   if (o.track_every) track = std::make_unique<TrackLog>(*o.track_every, o.dt);
   std::unique_ptr<CheckpointWriter> checkpoint;  // --checkpoint
+#ifdef NPSNET_HAVE_NET
+  if (!o.checkpoint.empty()) checkpoint = std::make_unique<CheckpointWriter>(o.checkpoint, ck_key, round_identities(bridge.get()));
+#else
   if (!o.checkpoint.empty()) checkpoint = std::make_unique<CheckpointWriter>(o.checkpoint, ck_key);
+#endif
   bool state_written = o.state_out.empty();  // --state-out: written once, at --state-at or the end
   const auto write_state_due = [&] {
     if (!state_written && o.state_at && sim.world().t >= *o.state_at - 1e-9) {
@@ -342,9 +346,12 @@ int run_command(const RunOptions& opt) {
       for (long i = 0; i < first; ++i) {
         sim.tick();
         if (restore && sim.world().frame == restore->frame) {
-          const int n = restore_checkpoint(sim, *restore, o.checkpoint);
-          std::fprintf(stderr, "npsnet: --checkpoint %s: %d vehicle(s) put back as they were at t = %.2f s\n",
-                         o.checkpoint.string().c_str(), n, restore->t);
+          const std::vector<int> rounds = restore_checkpoint(sim, *restore, o.checkpoint);
+#ifdef NPSNET_HAVE_NET
+          adopt_rounds(bridge.get(), *restore, rounds);
+#endif
+          std::fprintf(stderr, "npsnet: --checkpoint %s: %zu vehicle(s) and %zu round(s) in flight put back as they were at t = %.2f s\n",
+                         o.checkpoint.string().c_str(), restore->vehicles.size(), rounds.size(), restore->t);
         }
         write_state_due();
       }

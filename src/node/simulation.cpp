@@ -52,6 +52,13 @@ void Simulation::apply_now(const world::Changes& c) {
   world::apply(w_, c, now_applied_);
 }
 
+int Simulation::relaunch(const world::Launch& l) {
+  now_.clear();
+  now_.launches.push_back(l);
+  apply_now(now_);
+  return now_applied_.launched.back();
+}
+
 int Simulation::fire(int shooter, int munition_kind, const Vec3 point, int target_entity, const std::string target_name) {
   if (fire_held_) return -1;
   auto launch = dynamics::fire(w_, shooter, munition_kind, point, target_entity);

@@ -105,6 +105,9 @@ class Simulation {
   // joined; their craters arrive from the network (node/repeat_ledger.hpp).
   void hold_fire(bool held) { fire_held_ = held; }
   int find_entity(const std::string& id) const;
+  // Launches l between ticks as a round already in flight (a restored checkpoint,
+  // node/checkpoint.hpp): no fire event, no Fire PDU (its old process sent one). Returns its slot.
+  int relaunch(const world::Launch& l);
   // Entity e was put somewhere else between ticks (node/checkpoint.hpp): no turn over the move.
   void placed(int e) { detector_.forget_turn(e); }
 

@@ -82,7 +82,7 @@ TEST(Join, RestartedNodeAndLateJoinerJoinAtTheExerciseTimeAndLearnThePast) {
     for (const auto& f : of_type(ev3, "fire"))  // g1's round (node 1, t = 14 s) may arrive as a remote fire
       EXPECT_TRUE(f.value("remote", false)) << f.dump() << ": its rounds of t = 2 s and 10 s are not fired again";
     EXPECT_TRUE(of_type(ev3, "id_clash").empty()) << "an adopted repeat of its own round is no identity clash";
-    EXPECT_NE(lan::read_text(dir / "out_3b.txt").find("vehicle(s) put back as they were at t = "), std::string::npos)
+    EXPECT_NE(lan::read_text(dir / "out_3b.txt").find("round(s) in flight put back as they were at t = "), std::string::npos)
         << lan::read_text(dir / "out_3b.txt");
     // b3's place: the last sample before the kill, the first after the restart (a wreck: still).
     json before, after;
@@ -154,5 +154,42 @@ TEST(Join, ABadCheckpointIsBadInputWritingNothing) {
     EXPECT_NE(out.find(says), std::string::npos) << out;
     EXPECT_FALSE(std::filesystem::exists(dir / ("events_" + tag + ".jsonl"))) << "nothing written on bad input";
   }
+  std::filesystem::remove_all(dir);
+}
+
+// restart_round.toml between two processes on loopback: node 2's round (fired at 1 s, falls at
+// about 7 s) is in flight when node 2 is SIGKILLed at 4 s; started again at 8 s with its
+// --checkpoint, it flies the round on while catching up and sends its Detonation at the join:
+// node 1 gets the crater once, where the round falls (3999.9, 1000). Without the checkpoint no
+// node ever got that Detonation.
+TEST(Join, ARoundInFlightAtTheKillFallsOnceTheNodeIsBack) {
+  const auto dir = lan::fresh_dir("join_round");
+  const int port = lan::random_port();
+  const double t0 = lan::unix_now() + 2.0;
+  auto args_of = [&](int node, const std::string& tag) {
+    auto a = lan::node_args("restart_round.toml", port, node, t0, 14, dir, tag);
+    if (node == 2) a.insert(a.end(), {"--checkpoint", (dir / "checkpoint_2.jsonl").string()});
+    return a;
+  };
+  lan::Procs procs;
+  const int p1 = procs.start(args_of(1, "1"), dir / "out_1.txt");
+  int p2 = procs.start(args_of(2, "2"), dir / "out_2.txt");
+  sleep_until_unix(t0 + 4);
+  procs.kill_now(p2);
+  sleep_until_unix(t0 + 8);
+  p2 = procs.start(args_of(2, "2b"), dir / "out_2b.txt");
+  ASSERT_EQ(procs.wait(p1, 40.0), 0) << lan::read_text(dir / "out_1.txt");
+  ASSERT_EQ(procs.wait(p2, 40.0), 0) << lan::read_text(dir / "out_2b.txt");
+  EXPECT_EQ(of_type(lan::read_events(dir / "events_2.jsonl"), "fire").size(), 1u) << "g2 fired before the kill";
+  EXPECT_TRUE(of_type(lan::read_events(dir / "events_2.jsonl"), "detonation").empty()) << "and was killed before it fell";
+  EXPECT_NE(lan::read_text(dir / "out_2b.txt").find("and 1 round(s) in flight put back"), std::string::npos)
+      << lan::read_text(dir / "out_2b.txt");
+  const auto ev1 = lan::read_events(dir / "events_1.jsonl");
+  const auto det = of_type(ev1, "detonation");
+  ASSERT_EQ(det.size(), 1u) << "node 1 gets the round's Detonation once";
+  const auto craters = of_type(ev1, "crater");
+  ASSERT_EQ(craters.size(), 1u);
+  EXPECT_NEAR(craters[0]["point"][0].get<double>(), 3999.926, 0.01);
+  EXPECT_NEAR(craters[0]["point"][1].get<double>(), 1000.0, 0.01);
   std::filesystem::remove_all(dir);
 }

@@ -87,7 +87,7 @@ TEST(Checkpoint, WhatIsWrittenIsReadBackBitForBit) {
   }
   // Put back into a fresh world at frame 0: the vehicles are where the checkpoint has them.
   node::Simulation fresh(world::build_world(sc), sc, log, 0.1);
-  EXPECT_EQ(node::restore_checkpoint(fresh, *r, file), 3);
+  EXPECT_EQ(node::restore_checkpoint(fresh, *r, file).size(), 0u) << "no rounds in flight";
   const int a2 = fresh.find_entity("a2");
   EXPECT_EQ(fresh.world().ents.pos[a2], sim.world().ents.pos[sim.find_entity("a2")]);
   EXPECT_EQ(fresh.world().ents.heading_deg[a2], sim.world().ents.heading_deg[sim.find_entity("a2")]);

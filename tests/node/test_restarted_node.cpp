@@ -23,8 +23,14 @@
 //    node 2's parked d2 was damaged by the blast of the round that hit v2; it comes back damaged
 //    (without it: intact, the Detonation names only v2). Each test runs the same exercise
 //    without the checkpoint too and asserts the old answer, so it fails if the restore does not
-//    happen.
+//    happen. restart_round.toml: node 2's round (fired at 1 s, falls at 7 s) is in flight when
+//    node 2 is killed; the checkpoint holds it, the restart flies it on and its Detonation goes
+//    out under the Fire PDU's event id and munition id: node 1 gets the crater once, whether the
+//    round fell while node 2 was catching up (sent at the join) or after (sent live). Without
+//    the checkpoint no node ever gets that Detonation (its Fire went out, nobody holds the round).
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 #include "wire_support.hpp"
 
@@ -35,6 +41,7 @@ namespace {
 const std::string kLan = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/lan.toml";
 const std::string kRestart = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/restart.toml";
 const std::string kRestartBlast = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/restart_blast.toml";
+const std::string kRestartRound = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/restart_round.toml";
 constexpr double kTimeoutS = 2.4;  // heartbeat 1 s (Annex C ratio 5:12)
 constexpr int kKillAt = 40, kDeadFor = 40, kAfter = 40;  // ticks of 0.1 s
 
@@ -174,5 +181,64 @@ TEST(RestartedNode, WithACheckpointItsBlastDamagedVehicleComesBackDamaged) {
         << (keep ? "the checkpoint keeps d2's blast damage" : "without it the restart forgets it (the old answer)");
     EXPECT_EQ(n1.world().ents.state[n1.index("d2")], keep ? 1 : 0) << "node 1 sees what node 2 now says";
     EXPECT_EQ(count(wire.events(2), "detonation"), 1) << "the repeated Detonation is applied once";
+  }
+}
+
+namespace {
+// restart_round.toml with node 2 killed at tick `kill` and restarted at tick `back`, with or without
+// its checkpoint. Node 1's world and events, and node 2's Fire and Detonation identities (octets
+// 24-35: munition entity id and event id, the same place in both PDUs).
+struct RoundRun {
+  int detonations = 0, craters = 0;
+  Vec3 crater = Vec3::Zero();
+  std::vector<std::vector<std::uint8_t>> fire_ids, detonation_ids;  // node 2's, as sent
+  int round_lines = -1;  // rounds in node 2's checkpoint at the kill
+};
+RoundRun round_run(bool keep, int kill, int back, const std::string& tag) {
+  RoundRun out;
+  test::Wire wire(kRestartRound, 2, tag, kTimeoutS, [&out](int from, int to, const std::vector<std::uint8_t>& d) {
+    if (from == 2 && to == 1 && d.size() >= 36 && (test::pdu_type(d) == 2 || test::pdu_type(d) == 3)) {
+      auto& ids = test::pdu_type(d) == 2 ? out.fire_ids : out.detonation_ids;
+      const std::vector<std::uint8_t> id(d.begin() + 24, d.begin() + 36);
+      if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+    }
+    return 1;
+  });
+  if (keep) wire.keep_checkpoint(2);
+  wire.run(kill);
+  if (keep) {
+    const auto c = node::read_checkpoint(wire.node(2).checkpoint_file);
+    out.round_lines = c ? static_cast<int>(c->rounds.size()) : -1;
+  }
+  wire.kill(2);
+  wire.run(back - kill);
+  wire.restart(2, back);
+  wire.run(200 - back);
+  for (const auto& e : wire.events(1)) {
+    if (e["event"] == "detonation") ++out.detonations;
+    if (e["event"] == "crater") ++out.craters, out.crater = Vec3(e["point"][0], e["point"][1], e["point"][2]);
+  }
+  return out;
+}
+}  // namespace
+
+TEST(RestartedNode, WithACheckpointItsRoundInFlightAtTheKillStillFalls) {
+  struct Case {
+    int kill, back;
+    const char* when;
+  };
+  for (const Case c : {Case{40, 80, "falls while node 2 catches up"}, Case{25, 45, "falls after node 2 joined"}}) {
+    SCOPED_TRACE(c.when);
+    const RoundRun none = round_run(false, c.kill, c.back, std::string("round_none_") + std::to_string(c.kill));
+    EXPECT_EQ(none.fire_ids.size(), 1u) << "the Fire PDU went out before the kill";
+    EXPECT_EQ(none.detonations, 0) << "without the checkpoint the round is lost for good (the old answer)";
+    const RoundRun kept = round_run(true, c.kill, c.back, std::string("round_kept_") + std::to_string(c.kill));
+    EXPECT_EQ(kept.round_lines, 1) << "the checkpoint at the kill holds the round in flight";
+    EXPECT_EQ(kept.detonations, 1) << "node 1 gets the Detonation, once, repeats and all";
+    EXPECT_EQ(kept.craters, 1);
+    EXPECT_LT((kept.crater - Vec3(3999.926, 1000.0, 100.0)).norm(), 0.01) << "where the round would have fallen";
+    ASSERT_EQ(kept.fire_ids.size(), 1u);
+    ASSERT_EQ(kept.detonation_ids.size(), 1u) << "every copy of the Detonation is the same";
+    EXPECT_EQ(kept.detonation_ids[0], kept.fire_ids[0]) << "the Fire's munition id and event id";
   }
 }

@@ -72,7 +72,8 @@ class Wire {
     WiredNode& nd = node(k);
     nd.checkpoint_file = scratch_dir() / (tag_ + "_n" + std::to_string(k) + ".checkpoint.jsonl");
     std::filesystem::remove(nd.checkpoint_file);
-    nd.checkpoint = std::make_unique<node::CheckpointWriter>(nd.checkpoint_file, checkpoint_key(k));
+    nd.checkpoint = std::make_unique<node::CheckpointWriter>(nd.checkpoint_file, checkpoint_key(k),
+                                                             node::round_identities(nd.bridge.get()));
   }
   node::CheckpointKey checkpoint_key(int k) const { return {1, k, std::nullopt, 0.1, node::scenario_digest(scenario_file_)}; }
   // Node k dies (SIGKILL): it ticks no more, sends nothing, and what is sent to it is lost.
@@ -95,14 +96,16 @@ class Wire {
       nd->checkpoint_file = node(k).checkpoint_file;
       restore = node::read_checkpoint(nd->checkpoint_file);
       if (restore && (!node::checkpoint_mismatch(*restore, checkpoint_key(k)).empty() || restore->frame > ticks)) restore.reset();
-      nd->checkpoint = std::make_unique<node::CheckpointWriter>(nd->checkpoint_file, checkpoint_key(k));
+      nd->checkpoint = std::make_unique<node::CheckpointWriter>(nd->checkpoint_file, checkpoint_key(k),
+                                                                node::round_identities(nd->bridge.get()));
     }
     nd->log->mute(true);
     nd->sim->hold_fire(true);
     nd->bridge->catch_up(true);
     for (int i = 0; i < ticks; ++i) {
       nd->sim->tick();
-      if (restore && nd->world().frame == restore->frame) node::restore_checkpoint(*nd->sim, *restore, nd->checkpoint_file);
+      if (restore && nd->world().frame == restore->frame)
+        node::adopt_rounds(nd->bridge.get(), *restore, node::restore_checkpoint(*nd->sim, *restore, nd->checkpoint_file));
     }
     nd->bridge->catch_up(false);
     nd->sim->hold_fire(false);
