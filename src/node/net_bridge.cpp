@@ -84,7 +84,14 @@ NetBridge::~NetBridge() = default;
 
 bool NetBridge::dated_before_join(std::uint32_t timestamp) const {
   // NPSNET nodes date their PDUs by the scenario clock in a relative timestamp (low bit 0).
-  return joined_t_ >= 0 && !(timestamp & 1u) && net::timestamp_difference(net::relative_timestamp(joined_t_), timestamp) > 0;
+  if (joined_t_ < 0 || (timestamp & 1u)) return false;
+  if (net::timestamp_difference(net::relative_timestamp(joined_t_), timestamp) > 0) return true;
+  // Relative timestamps wrap at the hour, so one dated more than 30 min before the join reads as
+  // after it. A PDU of a new event is dated within seconds of now (the nodes share the scenario
+  // clock, --start-at; one waiting for its entity waits one DIS timeout at most); one dated
+  // further from now, either way, repeats the past.
+  const double fresh_s = 2 * remotes_.thresholds().timeout_s;
+  return std::fabs(net::timestamp_difference(net::relative_timestamp(sim_.world().t), timestamp)) > fresh_s;
 }
 
 void NetBridge::set_source(DatagramSource source) {

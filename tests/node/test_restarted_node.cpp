@@ -242,3 +242,25 @@ TEST(RestartedNode, WithACheckpointItsRoundInFlightAtTheKillStillFalls) {
     EXPECT_EQ(kept.detonation_ids[0], kept.fire_ids[0]) << "the Fire's munition id and event id";
   }
 }
+
+// Relative DIS timestamps wrap at the hour: node 1's repeat of its t1/a2 Collision PDU (dated
+// t ~ 3 s) reached node 2, restarted 40 min into the exercise, dated "20 min after the join", and
+// was applied as a new collision (a bounce of then pushed on now). A PDU of a new event is dated
+// within seconds of now (the nodes share the scenario clock); one dated further from now, either
+// way, repeats the past.
+TEST(RestartedNode, ACollisionMoreThanHalfAnHourBeforeTheJoinIsStillThePast) {
+  test::Wire wire(kLan, 2, "past_wrap", kTimeoutS, [](int, int, const std::vector<std::uint8_t>&) { return 1; });
+  wire.run(kKillAt);
+  ASSERT_EQ(count(wire.events(2), "collision", "t1/a2"), 1);
+  wire.kill(2);
+  constexpr int kBack = 24000;  // 2,400 s: 40 min
+  wire.run(kBack - kKillAt);
+  wire.restart(2, kBack);
+  wire.run(kAfter);
+  auto& n2 = wire.node(2);
+  const auto ev = wire.events(2);
+  ASSERT_EQ(count(ev, "collision", "t1/a2"), 1) << "node 1's repeat is applied once";
+  for (const auto& e : ev)  // (t1b and a2b, parked in the map's corner by then, may touch anew after the join)
+    if (e["event"] == "collision" && e["a"] == "t1" && e["b"] == "a2") EXPECT_EQ(e.value("method", ""), "network_past") << e.dump();
+  EXPECT_EQ(n2.world().ents.state[n2.index("a2")], test::destroyed(n2, "a2"));
+}
