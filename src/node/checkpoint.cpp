@@ -46,6 +46,12 @@ void put(std::string& out, const char* key, T x) {
   if constexpr (std::is_floating_point_v<T>)
     if (std::find_if(buf, r.ptr, [](char ch) { return ch == '.' || ch == 'e'; }) == r.ptr) out += ".0";
 }
+// Appends key and s as a JSON string (ids and kinds come from the scenario, UTF-8 checked there;
+// replace keeps a bad byte from throwing).
+void put_text(std::string& out, const char* key, const std::string& s) {
+  out += key;
+  out += json(s).dump(-1, ' ', false, json::error_handler_t::replace);
+}
 void put3(std::string& out, const char* key, double a, double b, double c) {
   put(out, key, a), put(out, ",", b), put(out, ",", c);
   out += ']';
@@ -92,6 +98,18 @@ struct Line {
     const json& v = at(f);
     if (!v.is_boolean()) fail(f, "must be true or false");
     return v.get<bool>();
+  }
+  // A place (|height| within world/limits.hpp) and a velocity (no faster than any kind may go).
+  Vec3 place(const char* f) const {
+    const auto p = triple(f);
+    if (std::fabs(p[2]) > world::kMaxHeightM) fail(f, "height beyond +-" + std::to_string(world::kMaxHeightM) + " m");
+    return Vec3(p[0], p[1], p[2]);
+  }
+  Vec3 velocity(const char* f) const {
+    const auto u = triple(f);
+    const Vec3 v(u[0], u[1], u[2]);
+    if (v.norm() > kMaxMps) fail(f, "faster than " + std::to_string(world::kMaxSpeedKmh) + " km/h");
+    return v;
   }
   std::array<double, 3> triple(const char* f) const {
     const json& v = at(f);
@@ -177,9 +195,8 @@ void write_checkpoint(const std::filesystem::path& file, const Checkpoint& c) {
     std::string line;
     for (const auto& v : c.vehicles) {
       line.clear();
-      // Ids and kinds come from the scenario (UTF-8 checked there); replace keeps a bad byte from throwing.
-      line += "{\"id\":" + json(v.id).dump(-1, ' ', false, json::error_handler_t::replace);
-      line += ",\"kind\":" + json(v.kind).dump(-1, ' ', false, json::error_handler_t::replace);
+      put_text(line, "{\"id\":", v.id);
+      put_text(line, ",\"kind\":", v.kind);
       put(line, ",\"state\":", v.state);
       line += v.active ? ",\"active\":true" : ",\"active\":false";
       put3(line, ",\"pos\":[", v.pos.x(), v.pos.y(), v.pos.z());
@@ -197,10 +214,10 @@ void write_checkpoint(const std::filesystem::path& file, const Checkpoint& c) {
     }
     for (const auto& r : c.rounds) {
       line.clear();
-      line += "{\"round\":" + json(r.id).dump(-1, ' ', false, json::error_handler_t::replace);
-      line += ",\"kind\":" + json(r.kind).dump(-1, ' ', false, json::error_handler_t::replace);
-      line += ",\"shooter\":" + json(r.shooter).dump(-1, ' ', false, json::error_handler_t::replace);
-      line += ",\"target\":" + json(r.target).dump(-1, ' ', false, json::error_handler_t::replace);
+      put_text(line, "{\"round\":", r.id);
+      put_text(line, ",\"kind\":", r.kind);
+      put_text(line, ",\"shooter\":", r.shooter);
+      put_text(line, ",\"target\":", r.target);
       put3(line, ",\"pos\":[", r.pos.x(), r.pos.y(), r.pos.z());
       put3(line, ",\"vel\":[", r.vel.x(), r.vel.y(), r.vel.z());
       put3(line, ",\"aim\":[", r.aim.x(), r.aim.y(), r.aim.z());
@@ -260,11 +277,7 @@ Checkpoint read_checkpoint_text(std::string_view bytes, const std::string& name)
       if (c.rounds.size() == want_rounds) l.fail("line", "more lines than the header's vehicles and rounds");
       CheckpointRound r;
       r.id = l.text("round"), r.kind = l.text("kind"), r.shooter = l.text("shooter"), r.target = l.text("target");
-      const auto p = l.triple("pos"), u = l.triple("vel"), a = l.triple("aim");
-      if (std::fabs(p[2]) > world::kMaxHeightM) l.fail("pos", "height beyond +-" + std::to_string(world::kMaxHeightM) + " m");
-      if (std::fabs(a[2]) > world::kMaxHeightM) l.fail("aim", "height beyond +-" + std::to_string(world::kMaxHeightM) + " m");
-      r.pos = Vec3(p[0], p[1], p[2]), r.vel = Vec3(u[0], u[1], u[2]), r.aim = Vec3(a[0], a[1], a[2]);
-      if (r.vel.norm() > kMaxMps) l.fail("vel", "faster than " + std::to_string(world::kMaxSpeedKmh) + " km/h");
+      r.pos = l.place("pos"), r.vel = l.velocity("vel"), r.aim = l.place("aim");
       r.event = static_cast<int>(l.integer("event", 0, 65535));
       r.site = static_cast<int>(l.integer("site", 0, 65535));
       r.application = static_cast<int>(l.integer("application", 0, 65535));
@@ -278,10 +291,8 @@ Checkpoint read_checkpoint_text(std::string_view bytes, const std::string& name)
     v.state = static_cast<int>(l.integer("state", 0, 255));
     v.active = l.flag("active");
     // The bounds a scenario's own numbers keep (world/limits.hpp): a run never meets a value it cannot use.
-    const auto p = l.triple("pos"), u = l.triple("vel"), a = l.triple("hpr");
-    if (std::fabs(p[2]) > world::kMaxHeightM) l.fail("pos", "height beyond +-" + std::to_string(world::kMaxHeightM) + " m");
-    v.pos = Vec3(p[0], p[1], p[2]), v.vel = Vec3(u[0], u[1], u[2]);
-    if (v.vel.norm() > kMaxMps) l.fail("vel", "faster than " + std::to_string(world::kMaxSpeedKmh) + " km/h");
+    v.pos = l.place("pos"), v.vel = l.velocity("vel");
+    const auto a = l.triple("hpr");
     for (double x : a)
       if (std::fabs(x) > 720) l.fail("hpr", "angles must be within +-720 deg");
     v.heading = static_cast<float>(a[0]), v.pitch = static_cast<float>(a[1]), v.roll = static_cast<float>(a[2]);
@@ -311,6 +322,11 @@ std::string checkpoint_mismatch(const Checkpoint& c, const CheckpointKey& key) {
   if (c.key.dt != key.dt) return "--dt " + std::to_string(c.key.dt) + ", not " + std::to_string(key.dt);
   if (c.key.scenario != key.scenario) return "another scenario file (digest " + c.key.scenario + ", not " + key.scenario + ")";
   return "";
+}
+
+std::string checkpoint_unusable(const Checkpoint& c, const CheckpointKey& key, int64_t join_frame) {
+  if (std::string other = checkpoint_mismatch(c, key); !other.empty()) return other;
+  return c.frame > join_frame ? "taken after the exercise's current time" : "";
 }
 
 std::vector<int> checkpoint_slots(const world::World& w, const Checkpoint& c, const std::filesystem::path& file) {

@@ -98,6 +98,8 @@ std::optional<Checkpoint> read_checkpoint(const std::filesystem::path& file);
 Checkpoint read_checkpoint_text(std::string_view bytes, const std::string& name);
 // Why c is not of this key ("" when it is).
 std::string checkpoint_mismatch(const Checkpoint& c, const CheckpointKey& key);
+// Why a join at frame join_frame cannot use c ("" when it can: this key, taken no later).
+std::string checkpoint_unusable(const Checkpoint& c, const CheckpointKey& key, int64_t join_frame);
 // The world slot of each of c's vehicles in w (by id), checked: throws world::InputError
 // (FILE:LINE: field: message, `file` naming it) when w lacks one of them as a vehicle of
 // c.key.node, has it as another kind, or with fewer states.

@@ -190,11 +190,10 @@ int run_command(const RunOptions& opt) {
         print_problems(e);
         return 2;
       }
-      const std::string other = restore ? checkpoint_mismatch(*restore, ck_key) : "";
-      const long join_at = join_ticks(*o.start_at, o.dt);
-      if (restore && (!other.empty() || restore->frame > join_at)) {
+      const std::string why = restore ? checkpoint_unusable(*restore, ck_key, join_ticks(*o.start_at, o.dt)) : "";
+      if (!why.empty()) {
         std::fprintf(stderr, "npsnet: --checkpoint %s: not used (%s); it will be overwritten\n", o.checkpoint.string().c_str(),
-                       other.empty() ? "taken after the exercise's current time" : other.c_str());
+                     why.c_str());
         restore.reset();
       }
     }

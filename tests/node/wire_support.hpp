@@ -95,7 +95,7 @@ class Wire {
     if (!node(k).checkpoint_file.empty()) {
       nd->checkpoint_file = node(k).checkpoint_file;
       restore = node::read_checkpoint(nd->checkpoint_file);
-      if (restore && (!node::checkpoint_mismatch(*restore, checkpoint_key(k)).empty() || restore->frame > ticks)) restore.reset();
+      if (restore && !node::checkpoint_unusable(*restore, checkpoint_key(k), ticks).empty()) restore.reset();
       nd->checkpoint = std::make_unique<node::CheckpointWriter>(nd->checkpoint_file, checkpoint_key(k),
                                                                 node::round_identities(nd->bridge.get()));
     }
