@@ -5,6 +5,11 @@
 #include <array>
 #include <bit>
 #include <charconv>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <utility>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -145,6 +150,7 @@ Checkpoint take_checkpoint(const world::World& w, const CheckpointKey& key, cons
   c.frame = w.frame;
   c.t = w.t;
   const auto& ents = w.ents;
+  c.vehicles.reserve(ents.size());  // (grown one by one, the copies cost more than the taking)
   for (size_t e = 0; e < ents.size(); ++e) {
     if (!own(w, e, key.node)) continue;
     CheckpointVehicle v;
@@ -398,7 +404,61 @@ std::vector<int> restore_checkpoint(Simulation& sim, const Checkpoint& c, const 
   return rounds;
 }
 
+struct CheckpointWriter::Shared {
+  std::mutex mu;
+  std::condition_variable cv;
+  std::optional<Checkpoint> pending;  // taken, not yet picked up by the thread
+  bool writing = false, stop = false;
+  std::exception_ptr error;           // the first failed write, for the tick's thread
+  std::thread thread;
+};
+
+CheckpointWriter::CheckpointWriter(std::filesystem::path file, CheckpointKey key, RoundIdentity identity)
+    : file_(std::move(file)), key_(std::move(key)), identity_(std::move(identity)), shared_(std::make_unique<Shared>()) {
+  Shared& s = *shared_;
+  s.thread = std::thread([&s, file = file_] {
+    std::unique_lock lock(s.mu);
+    for (;;) {
+      s.cv.wait(lock, [&] { return s.pending || s.stop; });
+      if (!s.pending) return;  // stopped with nothing left to write
+      Checkpoint c = std::move(*s.pending);
+      s.pending.reset();
+      s.writing = true;
+      lock.unlock();
+      std::exception_ptr failed;
+      try {
+        write_checkpoint(file, c);
+      } catch (...) {
+        failed = std::current_exception();
+      }
+      lock.lock();
+      s.writing = false;
+      if (failed && !s.error) s.error = failed;
+      s.cv.notify_all();
+    }
+  });
+}
+
+CheckpointWriter::~CheckpointWriter() {
+  {
+    std::lock_guard lock(shared_->mu);
+    shared_->stop = true;
+  }
+  shared_->cv.notify_all();
+  shared_->thread.join();  // writes what is pending first
+}
+
+void CheckpointWriter::flush() {
+  std::unique_lock lock(shared_->mu);
+  shared_->cv.wait(lock, [&] { return !shared_->pending && !shared_->writing; });
+  if (shared_->error) std::rethrow_exception(std::exchange(shared_->error, nullptr));
+}
+
 void CheckpointWriter::after_tick(const world::World& w) {
+  {
+    std::lock_guard lock(shared_->mu);
+    if (shared_->error) std::rethrow_exception(std::exchange(shared_->error, nullptr));
+  }
   const auto& ents = w.ents;
   if (sig_.size() < ents.size()) sig_.resize(ents.size(), ~uint64_t{0});
   bool changed = false;
@@ -411,7 +471,12 @@ void CheckpointWriter::after_tick(const world::World& w) {
     if (s != sig_[e]) changed = true, sig_[e] = s;
   }
   if (!changed && w.t < last_t_ + kCheckpointEveryS - 1e-9) return;
-  write_checkpoint(file_, take_checkpoint(w, key_, identity_));
+  Checkpoint c = take_checkpoint(w, key_, identity_);
+  {
+    std::lock_guard lock(shared_->mu);
+    shared_->pending = std::move(c);  // replaces one the thread has not picked up yet
+  }
+  shared_->cv.notify_all();
   last_t_ = w.t;
   ++writes_;
 }

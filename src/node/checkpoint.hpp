@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -119,21 +120,33 @@ class NetBridge;
 RoundIdentity round_identities(const NetBridge* bridge);
 void adopt_rounds(NetBridge* bridge, const Checkpoint& c, const std::vector<int>& slots);
 
-// After each live tick: writes the checkpoint when it is due (see "When" above).
+// After each live tick: takes the checkpoint when it is due (see "When" above) and hands it to
+// its own thread, which writes it: the tick pays for the copy of the own vehicles' state (take_
+// checkpoint), not for the text and the file (2.3 ms of 2.5 ms for 518 vehicles). One write at a
+// time; a checkpoint due while one is being written waits, and a newer one replaces it (the file
+// is at most one checkpoint behind the tick, and never a part of one). A write that fails is
+// thrown (OutputError) from the next after_tick or flush, on the tick's thread. flush() waits
+// until the last checkpoint taken is on disk; the destructor does the same (errors dropped: call
+// flush first to hear them).
 class CheckpointWriter {
  public:
-  CheckpointWriter(std::filesystem::path file, CheckpointKey key, RoundIdentity identity = {})
-      : file_(std::move(file)), key_(std::move(key)), identity_(std::move(identity)) {}
+  CheckpointWriter(std::filesystem::path file, CheckpointKey key, RoundIdentity identity = {});
+  ~CheckpointWriter();
+  CheckpointWriter(const CheckpointWriter&) = delete;
+  CheckpointWriter& operator=(const CheckpointWriter&) = delete;
   void after_tick(const world::World& w);
-  int writes() const { return writes_; }
+  void flush();
+  int writes() const { return writes_; }  // checkpoints taken (each written unless a newer replaced it first)
 
  private:
+  struct Shared;
   std::filesystem::path file_;
   CheckpointKey key_;
   RoundIdentity identity_;
-  std::vector<uint64_t> sig_;  // per own entity, as last written: state, active, wanted speed
+  std::vector<uint64_t> sig_;  // per own entity, as last taken: state, active, wanted speed
   double last_t_ = -1e300;
   int writes_ = 0;
+  std::unique_ptr<Shared> shared_;  // the writer thread and what it is handed
 };
 
 }  // namespace npsnet::node

@@ -431,6 +431,7 @@ int run_command(const RunOptions& opt) {
         next_progress += ticks / 10;
       }
     }
+    if (checkpoint) checkpoint->flush();  // the last one taken is on disk (its thread writes them)
   } catch (const OutputError& e) {
     // A snapshot or the event log could not be written: say so, and end the log with it.
     std::fprintf(stderr, "npsnet: t = %.1f s: %s; run stopped\n", sim.world().t, e.what());

@@ -167,6 +167,7 @@ TEST(Checkpoint, TheWriterWritesOnADamageChangeAndEverySecond) {
     if (sim.world().ents.state[sim.find_entity("a2")] != before) {
       writes_at_kill = writer.writes();
       EXPECT_EQ(writer.writes(), w0 + 1) << "a2's damage changed at tick " << i << ": written at once";
+      writer.flush();  // its thread writes it
       const auto c = node::read_checkpoint(file);
       ASSERT_TRUE(c);
       EXPECT_EQ(c->frame, sim.world().frame);
@@ -176,4 +177,63 @@ TEST(Checkpoint, TheWriterWritesOnADamageChangeAndEverySecond) {
   // One at the first tick, one a second after each, one for the kill: 5 s -> 6 or 7.
   EXPECT_GE(writer.writes(), 6);
   EXPECT_LE(writer.writes(), 7);
+}
+
+namespace {
+std::string bytes_of(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+}  // namespace
+
+// The writer's own thread writes what the tick took: the same bytes as write_checkpoint on the
+// tick's thread, each checkpoint whole; a write that fails there is thrown on the tick's thread.
+TEST(Checkpoint, TheWriterThreadWritesWhatTheTickTookAndReportsItsFailure) {
+  const auto sc = world::load_scenario(kLan);
+  node::EventLog log;
+  node::Simulation sim(world::build_world(sc), sc, log, 0.1);
+  const auto file = test::scratch_dir() / "ckpt_thread.jsonl";
+  const auto same = test::scratch_dir() / "ckpt_thread_sync.jsonl";
+  std::filesystem::remove(file);
+  int64_t last_taken = -1;
+  {
+    node::CheckpointWriter writer(file, key_of(2));
+    for (int i = 0; i < 30; ++i) {  // 3 s: the first tick, each second, a2's kill
+      sim.tick();
+      const int before = writer.writes();
+      writer.after_tick(sim.world());
+      if (writer.writes() == before) continue;
+      last_taken = sim.world().frame;
+      writer.flush();
+      node::write_checkpoint(same, node::take_checkpoint(sim.world(), key_of(2)));
+      EXPECT_EQ(bytes_of(file), bytes_of(same)) << "taken at frame " << last_taken;
+    }
+    EXPECT_GE(writer.writes(), 3);
+    for (int i = 0; i < 15; ++i) {  // one more due; the destructor writes it
+      sim.tick();
+      const int before = writer.writes();
+      writer.after_tick(sim.world());
+      if (writer.writes() != before) last_taken = sim.world().frame;
+    }
+  }
+  const auto back = node::read_checkpoint(file);
+  ASSERT_TRUE(back);
+  EXPECT_GT(last_taken, 30);
+  EXPECT_EQ(back->frame, last_taken) << "the last one taken, written by the destructor";
+  EXPECT_FALSE(std::filesystem::exists(file.string() + ".tmp"));
+
+  // A folder where the file's folder should be: the thread's write fails; flush says so.
+  const auto blocker = test::scratch_dir() / "ckpt_blocker";
+  std::filesystem::remove_all(blocker);
+  std::ofstream(blocker) << "a file, not a folder\n";
+  node::CheckpointWriter bad(blocker / "ck.jsonl", key_of(2));
+  sim.tick();
+  bad.after_tick(sim.world());  // the first tick is always due
+  try {
+    bad.flush();
+    ADD_FAILURE() << "the write cannot succeed";
+  } catch (const node::OutputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--checkpoint"), std::string::npos) << e.what();
+  }
+  bad.flush();  // said once
 }
