@@ -233,8 +233,9 @@ void Detector::merge_lanes(int k) {
 }
 
 namespace {
-// Items per chunk below which a stage stays on one thread (waking a worker costs ~10-50 us).
-constexpr size_t kEntityGrain = 2048, kPairGrain = 256, kPendingGrain = 4;
+// Items per chunk below which a stage stays on one thread (a chunk claimed by a worker that is
+// spinning, core/jobs.hpp, costs well under a microsecond; one item here, 0.3-1 us).
+constexpr size_t kEntityGrain = 128, kPairGrain = 256, kPendingGrain = 4;
 // Runs fn(chunk, begin, end) over [0, count), on the pool when there is one.
 template <class F>
 int chunked(core::Jobs* jobs, size_t count, size_t grain, F&& fn) {

@@ -1,9 +1,20 @@
-// Worker pool of the tick (jobs.hpp): worker w runs chunk w of each job; the caller runs chunk 0.
+// Worker pool of the tick (jobs.hpp): the caller and the workers claim the chunks of each job.
 #include "core/jobs.hpp"
 
 #include <algorithm>
+#include <chrono>
 
 namespace npsnet::core {
+
+namespace {
+inline void cpu_relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#else
+  std::this_thread::yield();
+#endif
+}
+}  // namespace
 
 int Jobs::default_threads() {
   const unsigned h = std::thread::hardware_concurrency();
@@ -12,57 +23,84 @@ int Jobs::default_threads() {
 
 Jobs::Jobs(int threads) : threads_(std::clamp(threads, 1, kMaxThreads)), errors_(threads_) {
   workers_.reserve(threads_ - 1);
-  for (int w = 1; w < threads_; ++w) workers_.emplace_back([this, w] { work(w); });
+  for (int w = 1; w < threads_; ++w) workers_.emplace_back([this] { work(); });
 }
 
 Jobs::~Jobs() {
+  stop_.store(true);
   {
     std::lock_guard<std::mutex> lock(mu_);
-    stop_ = true;
   }
   wake_.notify_all();
   for (auto& t : workers_) t.join();
 }
 
-void Jobs::do_chunk(int c) {
-  try {
-    fn_(ctx_, c, chunk_begin(count_, c, k_), chunk_begin(count_, c + 1, k_));
-  } catch (...) {
-    errors_[c] = std::current_exception();
+void Jobs::wake() {
+  if (workers_.empty()) return;
+  wakes_.fetch_add(1);
+  if (sleepers_.load() > 0) {
+    std::lock_guard<std::mutex> lock(mu_);
+    wake_.notify_all();
   }
 }
 
-void Jobs::work(int w) {
-  unsigned long seen = 0;
+void Jobs::claim_chunks(uint32_t generation) {
+  uint64_t s = state_.load(std::memory_order_acquire);
   for (;;) {
-    {
-      std::unique_lock<std::mutex> lock(mu_);
-      wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
-      if (stop_) return;
-      seen = generation_;
-      if (w >= k_) continue;  // this job has fewer chunks than threads
+    if (generation_of(s) != generation) return;  // that job is over; another began
+    const uint32_t k = static_cast<uint32_t>(s >> 16) & 0xffff, c = static_cast<uint32_t>(s) & 0xffff;
+    if (c >= k) return;  // every chunk is taken
+    if (!state_.compare_exchange_weak(s, s + 1, std::memory_order_acq_rel, std::memory_order_acquire)) continue;
+    // Chunk c is ours: the job's fields stay as they are until it is done.
+    try {
+      fn_(ctx_, static_cast<int>(c), chunk_begin(count_, static_cast<int>(c), k_),
+          chunk_begin(count_, static_cast<int>(c) + 1, k_));
+    } catch (...) {
+      errors_[c] = std::current_exception();
     }
-    do_chunk(w);
-    {
-      std::lock_guard<std::mutex> lock(mu_);
-      if (--pending_ == 0) done_.notify_one();
+    finished_.fetch_add(1, std::memory_order_acq_rel);
+    s = state_.load(std::memory_order_acquire);
+  }
+}
+
+void Jobs::work() {
+  uint32_t seen = 0;
+  for (;;) {
+    // Wait for a job of a new generation: spin kSpinUs, then sleep until one comes, or until
+    // wake() (then spin again).
+    auto spin_from = std::chrono::steady_clock::now();
+    for (int polls = 1;; ++polls) {
+      if (stop_.load(std::memory_order_relaxed)) return;
+      if (generation_of(state_.load(std::memory_order_acquire)) != seen) break;
+      cpu_relax();
+      if (polls % 64 == 0 && std::chrono::steady_clock::now() - spin_from > std::chrono::microseconds(kSpinUs)) {
+        std::unique_lock<std::mutex> lock(mu_);
+        const uint32_t w = wakes_.load();
+        sleepers_.fetch_add(1);
+        wake_.wait(lock, [&] { return stop_.load() || wakes_.load() != w || generation_of(state_.load()) != seen; });
+        sleepers_.fetch_sub(1);
+        spin_from = std::chrono::steady_clock::now();
+      }
     }
+    seen = generation_of(state_.load(std::memory_order_acquire));
+    claim_chunks(seen);
   }
 }
 
 void Jobs::run(size_t count, int k, Call fn, void* ctx) {
-  {
+  fn_ = fn, ctx_ = ctx, count_ = count, k_ = k;
+  std::fill(errors_.begin(), errors_.begin() + k, nullptr);
+  finished_.store(0, std::memory_order_relaxed);
+  const uint32_t g = generation_of(state_.load(std::memory_order_relaxed)) + 1;  // only the caller writes it
+  state_.store(uint64_t{g} << 32 | uint64_t(static_cast<uint32_t>(k)) << 16);  // seq_cst: publishes the fields
+  if (sleepers_.load() > 0) {  // (seq_cst with the sleeper's count: either it sees g or is told)
     std::lock_guard<std::mutex> lock(mu_);
-    fn_ = fn, ctx_ = ctx, count_ = count, k_ = k;
-    pending_ = k - 1;
-    std::fill(errors_.begin(), errors_.end(), nullptr);
-    ++generation_;
+    wake_.notify_all();
   }
-  wake_.notify_all();
-  do_chunk(0);
-  {
-    std::unique_lock<std::mutex> lock(mu_);
-    done_.wait(lock, [&] { return pending_ == 0; });
+  claim_chunks(g);
+  for (int polls = 0; finished_.load(std::memory_order_acquire) < k; ++polls) {
+    if (polls < 4096) cpu_relax();
+    else std::this_thread::yield();  // a worker holding a chunk was descheduled
   }
   for (int c = 0; c < k; ++c)
     if (errors_[c]) std::rethrow_exception(errors_[c]);

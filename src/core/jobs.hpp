@@ -6,16 +6,24 @@
 //    starts none and runs everything on the caller, the single-threaded path).
 //  * for_chunks(count, grain, fn): splits [0, count) into k = chunks(count, grain) contiguous
 //    ranges, chunk c = [count * c / k, count * (c + 1) / k), and calls fn(c, begin, end) once
-//    for each (chunk 0 on the caller, the others on workers), returning when all are done.
+//    for each, returning when all are done. Chunks are claimed, not assigned: the caller starts
+//    on them at once and a worker takes the next unclaimed one when it arrives, so a stage never
+//    waits for a worker to wake (a short stage may run wholly on the caller). Which thread runs
+//    a chunk changes nothing: fn's outputs are keyed by the chunk index c.
 //    The split depends only on count, grain and threads(): a stage whose chunks write only their
 //    own outputs (per-chunk buffers, or the slots of their own range), merged afterwards in
 //    chunk order, gives the same bytes as one thread walking [0, count) in order.
 //  * An exception thrown by fn is rethrown on the caller once every chunk has ended (the one of
 //    the lowest chunk when several threw), so an error names the first bad item in index order.
 //  * Not reentrant: for_chunks is called from one thread (the tick's), never from inside fn.
-//    No allocation per call; workers sleep on a condition variable between calls.
+//    No allocation per call. A worker spins for kSpinUs after a job for the next one (a tick's
+//    stages follow each other within microseconds; waking a sleeping thread costs 10-50 us),
+//    then sleeps on a condition variable. wake() lets workers start spinning ahead of a burst of
+//    stages (the start of a tick).
 #pragma once
+#include <atomic>
 #include <condition_variable>
+#include <cstdint>
 #include <cstddef>
 #include <exception>
 #include <mutex>
@@ -59,6 +67,10 @@ class Jobs {
     run(count, k, &call<std::remove_reference_t<F>>, &fn);
   }
 
+ // Workers that sleep wake and spin (for kSpinUs) waiting for the next for_chunks.
+  void wake();
+  static constexpr int kSpinUs = 250;
+
  private:
   using Call = void (*)(void* ctx, int chunk, size_t begin, size_t end);
   template <class F>
@@ -66,22 +78,28 @@ class Jobs {
     (*static_cast<F*>(ctx))(c, b, e);
   }
   void run(size_t count, int k, Call fn, void* ctx);
-  void work(int worker);
-  void do_chunk(int c);
+  void work();
+  void claim_chunks(uint32_t generation);
+  // state_: generation (32 bits) | chunks of the job (16) | next chunk to claim (16). A claim is
+  // one compare-exchange; a claim at or past the job's chunk count ends the claimer's part.
+  static uint32_t generation_of(uint64_t s) { return static_cast<uint32_t>(s >> 32); }
 
   int threads_ = 1;
   size_t max_grain_ = 0;
   std::vector<std::thread> workers_;
-  std::mutex mu_;
-  std::condition_variable wake_, done_;
-  // The job being run (written under mu_ before the generation changes).
+  // The job being run: written by the caller before the generation changes, read by a thread
+  // only after it claimed one of its chunks (the job cannot end before that chunk does).
   Call fn_ = nullptr;
   void* ctx_ = nullptr;
   size_t count_ = 0;
   int k_ = 0;
-  unsigned long generation_ = 0;
-  int pending_ = 0;
-  bool stop_ = false;
+  std::atomic<uint64_t> state_{0};
+  std::atomic<int> finished_{0};  // chunks of the current job done
+  std::atomic<int> sleepers_{0};  // workers waiting on wake_
+  std::atomic<bool> stop_{false};
+  std::atomic<uint32_t> wakes_{0};  // wake() calls: a sleeping worker wakes and spins again
+  std::mutex mu_;
+  std::condition_variable wake_;
   std::vector<std::exception_ptr> errors_;  // per chunk
 };
 

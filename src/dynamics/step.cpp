@@ -221,7 +221,7 @@ void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::
       else span[c] = {std::min(span[c].first, e), e + 1};
     }
   };
-  constexpr size_t kGrain = 2048;  // vehicles per chunk below which one thread does it all
+  constexpr size_t kGrain = 128;  // vehicles per chunk below which one thread does it all
   if (jobs) jobs->for_chunks(n, kGrain, vehicles);
   else vehicles(0, 0, n);
   size_t m0 = n, m1 = 0;

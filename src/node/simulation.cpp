@@ -210,6 +210,7 @@ void Simulation::set_time(double t) {
 void Simulation::inject_detonation(const world::DetonationRecord& d) { injected_detonations_.push_back(d); }
 
 void Simulation::tick() {
+  if (jobs_) jobs_->wake();  // the workers spin through the tick's stages (core/jobs.hpp)
   fired_.clear();
   changes_.clear();
   applied_.clear();
