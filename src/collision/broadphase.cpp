@@ -39,7 +39,7 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
   bucket_.resize(4 * static_cast<size_t>(n));  // at most 2 x 2 cells a box: box i's from 4 i
   // Count, per range of boxes (on the pool when there is one): each ordinary box in the (at most
   // 2 x 2) cells it overlaps, into the range's own counts per bucket.
-  constexpr size_t kBoxGrain = 2048;
+  constexpr size_t kBoxGrain = 256;  // (a chunk's count array is nb entries: nb ~ n)
   const int kc = jobs ? jobs->chunks(n, kBoxGrain) : 1;
   if (count_.size() < static_cast<size_t>(kc)) count_.resize(kc), large_chunk_.resize(kc);
   auto count = [&](int c, size_t b0, size_t b1) {
@@ -99,7 +99,8 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
   else fill(0, 0, n);
   // Pairs inside each bucket: same cell, reported in the first cell the two boxes share.
   // Ranges of buckets, each into its own buffer (chunk_out_), concatenated in range order.
-  const int k = jobs ? jobs->chunks(nb, 4096) : 1;
+  constexpr size_t kBucketGrain = 256;
+  const int k = jobs ? jobs->chunks(nb, kBucketGrain) : 1;
   if (chunk_out_.size() < static_cast<size_t>(k)) chunk_out_.resize(k);
   auto range = [&](int c, size_t h0, size_t h1) {
     auto& o = k == 1 ? out : chunk_out_[c];
@@ -131,7 +132,7 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
   if (k == 1) {
     range(0, 0, nb);
   } else {
-    jobs->for_chunks(nb, 4096, range);
+    jobs->for_chunks(nb, kBucketGrain, range);
     for (int c = 0; c < k; ++c) out.insert(out.end(), chunk_out_[c].begin(), chunk_out_[c].end());
   }
   // Large boxes against every box (each pair once).
