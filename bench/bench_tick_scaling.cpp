@@ -17,7 +17,8 @@
 // be the same bytes, else the bench stops). Past 32,767 entities the node numbers its entities
 // under several DIS applications (node/ownership.hpp), so the whole tick is measured at every N.
 // Usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T]]
-//   default N = 500 ... 200,000 -> bench/results/tick_scaling.csv; --quick: 500 and 5,000, no CSV.
+//   default N = 500 ... 200,000 -> bench/results/tick_scaling.csv; --quick: 500 and 5,000, no CSV;
+//   --n without --csv: no CSV (the committed one is the chart of every N).
 //   --one 1,2: only the node with net on (1) or off (0) on that many threads, `warm` + T ticks
 //   (default: the table's), its median printed, no CSV: for a profiler (callgrind
 //   --toggle-collect='npsnet::node::Simulation::tick()': two runs, T and T + 30, give the
@@ -108,6 +109,7 @@ int main(int argc, char** argv) {
   std::vector<int> ns = {500, 1000, 2000, 5000, 10000, 20000, 50000, 100000, 200000};
   std::string csv = std::string(NPSNET_SOURCE_DIR) + "/bench/results/tick_scaling.csv";
   int one_net = -1, one_threads = 1, ticks_override = 0;
+  bool some_n = false, csv_given = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) ns = {500, 5000}, csv.clear();
     else if (!std::strcmp(argv[i], "--one") && i + 1 < argc &&
@@ -116,8 +118,9 @@ int main(int argc, char** argv) {
       csv.clear();
     else if (!std::strcmp(argv[i], "--ticks") && i + 1 < argc && (ticks_override = std::atoi(argv[++i])) > 0) {
     }
-    else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
+    else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i], csv_given = true;
     else if (!std::strcmp(argv[i], "--n") && i + 1 < argc) {
+      some_n = true;
       ns.clear();
       std::stringstream ss(argv[++i]);
       for (std::string t; std::getline(ss, t, ',');) ns.push_back(std::stoi(t));
@@ -126,6 +129,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  if (some_n && !csv_given) csv.clear();
   const world::Scenario base = world::load_scenario(std::string(NPSNET_SOURCE_DIR) + "/scenarios/default.toml");
   std::ofstream out;
   if (!csv.empty()) {
