@@ -72,7 +72,11 @@ void Jobs::work() {
     for (int polls = 1;; ++polls) {
       if (stop_.load(std::memory_order_relaxed)) return;
       if (generation_of(state_.load(std::memory_order_acquire)) != seen) break;
-      cpu_relax();
+      // Yield, not only pause: where threads outnumber cores (several nodes or pools on one
+      // machine) a spinning worker must give way to one that has work, or that one waits a
+      // whole time slice (seen: 1,000 vehicles on 2 threads at 1.2-1.7 ms a tick, 0.5-0.8 on 1).
+      if (polls % 8 == 0) std::this_thread::yield();
+      else cpu_relax();
       if (polls % 64 == 0 && std::chrono::steady_clock::now() - spin_from > std::chrono::microseconds(kSpinUs)) {
         std::unique_lock<std::mutex> lock(mu_);
         const uint32_t w = wakes_.load();
