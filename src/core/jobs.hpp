@@ -67,7 +67,7 @@ class Jobs {
     run(count, k, &call<std::remove_reference_t<F>>, &fn);
   }
 
- // Workers that sleep wake and spin (for kSpinUs) waiting for the next for_chunks.
+  // Workers that sleep wake and spin (for kSpinUs) waiting for the next for_chunks.
   void wake();
   static constexpr int kSpinUs = 250;
 

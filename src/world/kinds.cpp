@@ -197,6 +197,7 @@ KindTable KindTable::load_text(std::string_view text, const std::filesystem::pat
     read_handling(r, *t, p, tl, k);
     if (k.mobility == Mobility::Munition && k.max_speed_kmh <= 0)
       r.problem(tl, p + "max_speed_kmh", "a munition needs its speed");
+    out.names_ += (out.names_.empty() ? "" : ", ") + k.name;
     out.kinds_.push_back(std::move(k));
   }
   for (const auto& k : out.kinds_)  // a vehicle's munition must be a munition kind of this file
@@ -214,12 +215,6 @@ int KindTable::find(const std::string& name) const {
   for (size_t i = 0; i < kinds_.size(); ++i)
     if (kinds_[i].name == name) return static_cast<int>(i);
   return -1;
-}
-
-std::string KindTable::names() const {
-  std::string s;
-  for (const auto& k : kinds_) s += (s.empty() ? "" : ", ") + k.name;
-  return s;
 }
 
 }  // namespace npsnet::world

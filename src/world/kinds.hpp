@@ -75,11 +75,12 @@ class KindTable {
   int find(const std::string& name) const;  // -1 if unknown
   const Kind& operator[](int i) const { return kinds_[static_cast<size_t>(i)]; }
   int size() const { return static_cast<int>(kinds_.size()); }
-  std::string names() const;  // "a, b, c" for messages
+  const std::string& names() const { return names_; }  // "a, b, c" for messages
   const std::filesystem::path& file() const { return file_; }
 
  private:
   std::vector<Kind> kinds_;
+  std::string names_;  // built with kinds_: messages name them once per bad entry
   std::filesystem::path file_;
 };
 

@@ -268,7 +268,6 @@ void load_objects_csv_text(std::string_view text, const std::filesystem::path& f
   // empty last field), without a stream per line: a 40,000-object file is 40,000 lines.
   std::vector<std::string> cols;
   size_t ncols = 0;
-  std::string known;  // the kinds' names, for the first unknown kind's message and the next
   for (size_t at = 0; at < text.size();) {
     const size_t nl = text.find('\n', at);
     std::string_view line = text.substr(at, nl == std::string_view::npos ? std::string_view::npos : nl - at);
@@ -295,10 +294,8 @@ void load_objects_csv_text(std::string_view text, const std::filesystem::path& f
     const bool dup = !ids.insert(id).second;
     if (dup) problems.push_back({fname, ln, "id", "duplicate id '" + id + "'"});
     const int k = kinds.find(cols[1]);
-    if (k < 0) {
-      if (known.empty()) known = kinds.names();  // once a file, not once a bad line
-      problems.push_back({fname, ln, "kind", "unknown kind '" + cols[1] + "' (known: " + known + ")"});
-    } else if (kinds[k].mobile()) problems.push_back({fname, ln, "kind", "'" + cols[1] + "' is not a fixed kind"});
+    if (k < 0) problems.push_back({fname, ln, "kind", "unknown kind '" + cols[1] + "' (known: " + kinds.names() + ")"});
+    else if (kinds[k].mobile()) problems.push_back({fname, ln, "kind", "'" + cols[1] + "' is not a fixed kind"});
     double v[3] = {0, 0, 0};
     bool ok = true;
     static const char* names[3] = {"x_m", "y_m", "heading_deg"};
