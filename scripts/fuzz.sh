@@ -12,8 +12,14 @@
 # is unset (the fuzzer then takes only idle CPU); NPSNET_FUZZ_JOBS=N runs N targets at a time.
 # NPSNET_FUZZ_RUNS=N (CI): a repeatable run instead, N inputs per target from the committed seeds
 # alone with random seed 1 (SECONDS still caps it), so CI finds what a local run of it finds.
+# NPSNET_FUZZ_FORK=N: libFuzzer's fork mode, N child processes fuzzing one target at once (its
+# corpus merged between jobs), for a long run on several cores; executions are the children's
+# total. With NPSNET_FUZZ_RUNS it stops after that many in all, but is no longer repeatable
+# (which child runs which input depends on timing). NPSNET_FUZZ_BUILD=DIR builds and runs in DIR
+# instead of build-fuzz/ (a second tree, so one long run keeps its binary while another builds).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+B="${NPSNET_FUZZ_BUILD:-build-fuzz}"
 secs="${1:-60}"
 shift || true
 targets=("$@")
@@ -23,18 +29,20 @@ if ! command -v clang++ >/dev/null 2>&1; then
   echo "fuzz: clang++ not found (bash scripts/install-deps.sh installs clang)" >&2
   exit 2
 fi
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNPSNET_FUZZ=ON \
+CC=clang CXX=clang++ cmake -S . -B "$B" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNPSNET_FUZZ=ON \
   -DNPSNET_TESTS=OFF -DNPSNET_BENCH=OFF -DNPSNET_RENDER=OFF >/dev/null
-cmake --build build-fuzz -j2 --target "${targets[@]/#/fuzz_}"
+cmake --build "$B" -j2 --target "${targets[@]/#/fuzz_}"
 
 run_one() {
-  local t="$1" dir="build-fuzz/runs/$1" seeds=(fuzz/corpus/"$1") out="build-fuzz/corpus/$1" repeat=()
+  local t="$1" dir="$B/runs/$1" seeds=(fuzz/corpus/"$1") out="$B/corpus/$1" repeat=()
   [ -d "fuzz/regressions/$1" ] && seeds+=("fuzz/regressions/$1")
   if [ -n "${NPSNET_FUZZ_RUNS:-}" ]; then
     out="$dir/corpus" && rm -rf "$out"
     repeat=(-runs="$NPSNET_FUZZ_RUNS" -seed=1)
   fi
-  mkdir -p "$dir" "$out" "build-fuzz/findings/$t"
+  mkdir -p "$dir" "$out" "$B/findings/$t"
+  local fork=()
+  [ -n "${NPSNET_FUZZ_FORK:-}" ] && fork=(-fork="$NPSNET_FUZZ_FORK")
   local dict=()
   [ -f "fuzz/dict/$t.dict" ] && dict=(-dict="fuzz/dict/$t.dict")
   # -max_len: a datagram, capture or file up to 64 KiB (the node's receive buffer); the text
@@ -47,24 +55,30 @@ run_one() {
   # wall clock: 60, past the machine's observed stalls, where 10 ended a 9.1 million-input run
   # on an input that runs in 0.2-0.5 s).
   # malloc_context_size=0: no stack unwound at each allocation (a sixth of the time); a finding's
-  # report then lacks where its memory was allocated: replay it (build-fuzz/fuzz/fuzz_<t> FILE)
+  # report then lacks where its memory was allocated: replay it ($B/fuzz/fuzz_<t> FILE)
   # without the option for that.
   set +e
   ASAN_OPTIONS=detect_leaks=1:malloc_context_size=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-    "${nice_cmd[@]}" "build-fuzz/fuzz/fuzz_$t" -max_total_time="$secs" -timeout=60 -rss_limit_mb=2048 \
-      -max_len="$max_len" -print_final_stats=1 "${dict[@]}" "${repeat[@]}" -artifact_prefix="build-fuzz/findings/$t/" \
+    "${nice_cmd[@]}" "$B/fuzz/fuzz_$t" -max_total_time="$secs" -timeout=60 -rss_limit_mb=2048 \
+      -max_len="$max_len" -print_final_stats=1 "${dict[@]}" "${repeat[@]}" "${fork[@]}" -artifact_prefix="$B/findings/$t/" \
       "$out" "${seeds[@]}" >"$dir/log" 2>&1
   local rc=$?
   set -e
   local execs speed
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$dir/log" | tail -1)
   speed=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$dir/log" | tail -1)
+  if [ -z "$execs" ] && [ -n "${fork[*]}" ]; then  # fork mode: the last status line's total
+    execs=$(sed -n 's/^#\([0-9]*\): cov:.* time: \([0-9]*\)s.*/\1/p' "$dir/log" | tail -1)
+    local took
+    took=$(sed -n 's/^#\([0-9]*\): cov:.* time: \([0-9]*\)s.*/\2/p' "$dir/log" | tail -1)
+    [ -n "$execs" ] && [ "${took:-0}" -gt 0 ] && speed=$((execs / took))
+  fi
   local found slow
-  found=$(find "build-fuzz/findings/$t" -type f ! -name 'slow-unit-*' -newer "$dir/log.start" 2>/dev/null | wc -l)
-  slow=$(find "build-fuzz/findings/$t" -type f -name 'slow-unit-*' -newer "$dir/log.start" 2>/dev/null | wc -l)
+  found=$(find "$B/findings/$t" -type f ! -name 'slow-unit-*' -newer "$dir/log.start" 2>/dev/null | wc -l)
+  slow=$(find "$B/findings/$t" -type f -name 'slow-unit-*' -newer "$dir/log.start" 2>/dev/null | wc -l)
   printf 'fuzz %-9s %10s executions %7s exec/s  %d finding(s)  exit %d\n' "$t" "${execs:-?}" "${speed:-?}" \
     "$found" "$rc"
-  [ "$slow" -eq 0 ] || printf '    %d slow unit(s) (over 10 s; not a failure, replay alone): build-fuzz/findings/%s/slow-unit-*\n' "$slow" "$t"
+  [ "$slow" -eq 0 ] || printf '    %d slow unit(s) (over 10 s; not a failure, replay alone): %s/findings/%s/slow-unit-*\n' "$slow" "$B" "$t"
   if [ "$rc" -ne 0 ] || [ "$found" -ne 0 ]; then
     grep -E "ERROR|SUMMARY|runtime error|Test unit written" "$dir/log" | head -8 | sed 's/^/    /'
     return 1
@@ -75,15 +89,15 @@ status=0
 jobs_n="${NPSNET_FUZZ_JOBS:-1}"
 pids=()
 for t in "${targets[@]}"; do
-  mkdir -p "build-fuzz/runs/$t" && touch "build-fuzz/runs/$t/log.start"
+  mkdir -p "$B/runs/$t" && touch "$B/runs/$t/log.start"
   if [ "$jobs_n" -gt 1 ]; then
-    run_one "$t" > "build-fuzz/runs/$t/summary" & pids+=($!)
+    run_one "$t" > "$B/runs/$t/summary" & pids+=($!)
     if [ ${#pids[@]} -ge "$jobs_n" ]; then wait "${pids[0]}" || status=1; pids=("${pids[@]:1}"); fi
   else
     run_one "$t" || status=1
   fi
 done
 for p in "${pids[@]}"; do wait "$p" || status=1; done
-if [ "$jobs_n" -gt 1 ]; then for t in "${targets[@]}"; do cat "build-fuzz/runs/$t/summary"; done; fi
+if [ "$jobs_n" -gt 1 ]; then for t in "${targets[@]}"; do cat "$B/runs/$t/summary"; done; fi
 echo "fuzz: $([ $status -eq 0 ] && echo 'no findings' || echo 'FINDINGS (see above)')"
 exit $status
