@@ -67,7 +67,7 @@ run_one() {
   local execs speed
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$dir/log" | tail -1)
   speed=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$dir/log" | tail -1)
-  if [ -z "$execs" ] && [ -n "${fork[*]}" ]; then  # fork mode: the last status line's total
+  if [ -n "${fork[*]}" ]; then  # fork mode: the last status line's total (a child's stats may be in the log too)
     execs=$(sed -n 's/^#\([0-9]*\): cov:.* time: \([0-9]*\)s.*/\1/p' "$dir/log" | tail -1)
     local took
     took=$(sed -n 's/^#\([0-9]*\): cov:.* time: \([0-9]*\)s.*/\2/p' "$dir/log" | tail -1)
