@@ -64,14 +64,13 @@ run_one() {
       "$out" "${seeds[@]}" >"$dir/log" 2>&1
   local rc=$?
   set -e
-  local execs speed
-  execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$dir/log" | tail -1)
-  speed=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$dir/log" | tail -1)
+  local execs="" speed="" took=""
   if [ -n "${fork[*]}" ]; then  # fork mode: the last status line's total (a child's stats may be in the log too)
-    execs=$(sed -n 's/^#\([0-9]*\): cov:.* time: \([0-9]*\)s.*/\1/p' "$dir/log" | tail -1)
-    local took
-    took=$(sed -n 's/^#\([0-9]*\): cov:.* time: \([0-9]*\)s.*/\2/p' "$dir/log" | tail -1)
+    read -r execs took < <(sed -n 's/^#\([0-9]*\): cov:.* time: \([0-9]*\)s.*/\1 \2/p' "$dir/log" | tail -1) || true
     [ -n "$execs" ] && [ "${took:-0}" -gt 0 ] && speed=$((execs / took))
+  else
+    execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$dir/log" | tail -1)
+    speed=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$dir/log" | tail -1)
   fi
   local found slow
   found=$(find "$B/findings/$t" -type f ! -name 'slow-unit-*' -newer "$dir/log.start" 2>/dev/null | wc -l)
