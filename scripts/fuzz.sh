@@ -5,6 +5,8 @@
 # Prints executions, exec/s and findings per target; exits 1 when any target found something
 # (crash, sanitizer report, leak, timeout, out-of-memory): the input is left in
 # build-fuzz/findings/<t>/ — make it a regression (fuzz/regressions/<t>/) with its fix.
+# Stopped by SIGINT (Ctrl-C; pkill -INT -f build-fuzz/fuzz/fuzz_<t> for a run in the background)
+# with no finding: "interrupted", exit 2, the executions so far printed.
 # A slow unit (one input over 10 s of wall clock) is listed, not a failure: replay it alone
 # (build-fuzz/fuzz/fuzz_<t> FILE); on this machine whole-VM stalls of 17-18 s have made both
 # running fuzzers report one at the same second (2 Dec 00:45:35, inputs that run in 0.2-0.5 s).
@@ -78,25 +80,36 @@ run_one() {
   printf 'fuzz %-9s %10s executions %7s exec/s  %d finding(s)  exit %d\n' "$t" "${execs:-?}" "${speed:-?}" \
     "$found" "$rc"
   [ "$slow" -eq 0 ] || printf '    %d slow unit(s) (over 10 s; not a failure, replay alone): %s/findings/%s/slow-unit-*\n' "$slow" "$B" "$t"
+  # 72: libFuzzer stopped by SIGINT (Ctrl-C, or pkill -INT to end a long run): not a finding
+  # when it left none; said so, and the script's status says "interrupted".
+  if [ "$rc" -eq 72 ] && [ "$found" -eq 0 ]; then
+    echo "    interrupted (SIGINT) with no findings; the executions above ran"
+    return 2
+  fi
   if [ "$rc" -ne 0 ] || [ "$found" -ne 0 ]; then
     grep -E "ERROR|SUMMARY|runtime error|Test unit written" "$dir/log" | head -8 | sed 's/^/    /'
     return 1
   fi
 }
 
-status=0
+status=0  # 0 clean, 2 interrupted without findings, 1 findings (the worst of the targets')
+note() { if [ "$1" -eq 1 ] || [ "$status" -eq 0 ]; then status=$1; fi; }
 jobs_n="${NPSNET_FUZZ_JOBS:-1}"
 pids=()
 for t in "${targets[@]}"; do
   mkdir -p "$B/runs/$t" && touch "$B/runs/$t/log.start"
   if [ "$jobs_n" -gt 1 ]; then
     run_one "$t" > "$B/runs/$t/summary" & pids+=($!)
-    if [ ${#pids[@]} -ge "$jobs_n" ]; then wait "${pids[0]}" || status=1; pids=("${pids[@]:1}"); fi
+    if [ ${#pids[@]} -ge "$jobs_n" ]; then wait "${pids[0]}" || note $?; pids=("${pids[@]:1}"); fi
   else
-    run_one "$t" || status=1
+    run_one "$t" || note $?
   fi
 done
-for p in "${pids[@]}"; do wait "$p" || status=1; done
+for p in "${pids[@]}"; do wait "$p" || note $?; done
 if [ "$jobs_n" -gt 1 ]; then for t in "${targets[@]}"; do cat "$B/runs/$t/summary"; done; fi
-echo "fuzz: $([ $status -eq 0 ] && echo 'no findings' || echo 'FINDINGS (see above)')"
+case $status in
+  0) echo "fuzz: no findings" ;;
+  2) echo "fuzz: interrupted, no findings" ;;
+  *) echo "fuzz: FINDINGS (see above)" ;;
+esac
 exit $status
