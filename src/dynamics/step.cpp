@@ -214,8 +214,19 @@ void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::
   // in index order) walks that span only, not every entity again.
   std::array<std::pair<size_t, size_t>, core::Jobs::kMaxThreads> span;
   span.fill({n, 0});
+  // Vehicles are stored in no spatial order: each one's terrain posts (world/terrain.hpp) and its
+  // current waypoint are asked of the cache kPrefetchAhead vehicles before it is stepped, so that
+  // the misses overlap instead of stalling one by one (no effect on any result). At 100,000
+  // vehicles the first terrain lookup of each took a third of the stage's time (perf).
+  constexpr size_t kPrefetchAhead = 8;
   auto vehicles = [&](int c, size_t e0, size_t e1) {
     for (size_t e = e0; e < e1; ++e) {
+      if (e + kPrefetchAhead < e1) {
+        const size_t f = e + kPrefetchAhead;
+        w.terrain.prefetch(ents.pos[f].x(), ents.pos[f].y());
+        const auto& r = ents.route[f];
+        if (static_cast<size_t>(ents.leg[f]) < r.size()) __builtin_prefetch(r.data() + ents.leg[f]);
+      }
       if (!moves(e)) continue;
       if (w.kinds[ents.kind[e]].mobility != Mobility::Munition) step_vehicle(w, static_cast<int>(e), dt, memo);
       else span[c] = {std::min(span[c].first, e), e + 1};
