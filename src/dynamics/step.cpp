@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/atan_float.hpp"
+#include "core/prefetch.hpp"
 #include "dynamics/drive.hpp"
 #include "dynamics/dynamics.hpp"
 #include "world/pose.hpp"
@@ -225,7 +226,7 @@ void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::
         const size_t f = e + kPrefetchAhead;
         w.terrain.prefetch(ents.pos[f].x(), ents.pos[f].y());
         const auto& r = ents.route[f];
-        if (static_cast<size_t>(ents.leg[f]) < r.size()) __builtin_prefetch(r.data() + ents.leg[f]);
+        if (static_cast<size_t>(ents.leg[f]) < r.size()) core::prefetch(r.data() + ents.leg[f]);
       }
       if (!moves(e)) continue;
       if (w.kinds[ents.kind[e]].mobility != Mobility::Munition) step_vehicle(w, static_cast<int>(e), dt, memo);

@@ -10,6 +10,7 @@
 
 #include "core/geodesy.hpp"
 #include "core/math.hpp"
+#include "core/prefetch.hpp"
 
 namespace npsnet::world {
 
@@ -38,23 +39,17 @@ class Terrain {
     const double h00 = post(i, j), h10 = post(i + 1, j), h01 = post(i, j + 1), h11 = post(i + 1, j + 1);
     return (h00 * (1 - fx) + h10 * fx) * (1 - fy) + (h01 * (1 - fx) + h11 * fx) * fy;
   }
-  // Asks the cache for the two rows of posts height(x, y) reads: a hint that changes no result,
-  // for a loop over entities scattered over the map to call a few entities ahead (at 100,000
-  // vehicles the first height() of each otherwise waits on memory; the 50 km map's posts are
-  // 2.5 MB). x86-64: the instruction itself (GCC 12 dropped __builtin_prefetch of this address,
-  // seen in the code it emitted); elsewhere the builtin.
+  // Asks the cache for the two rows of posts height(x, y) reads (core/prefetch.hpp): a hint that
+  // changes no result, for a loop over entities scattered over the map to call a few entities
+  // ahead (at 100,000 vehicles the first height() of each otherwise waits on memory; the 50 km
+  // map's posts are 2.5 MB). Any x, y: NaN and infinities clamp like the map's edges.
   void prefetch(double x, double y) const {
     const double u = x / spacing_, v = y / spacing_, ui = cols_ - 2, vj = rows_ - 2;
     const long i = static_cast<long>(u > 0 ? (u < ui ? u : ui) : 0);  // NaN: 0
     const long j = static_cast<long>(v > 0 ? (v < vj ? v : vj) : 0);
     const float* p = h_.data() + (j * cols_ + i);
-#if defined(__x86_64__)
-    asm volatile("prefetcht0 %0" : : "m"(*p));
-    asm volatile("prefetcht0 %0" : : "m"(*(p + cols_)));
-#else
-    __builtin_prefetch(p);
-    __builtin_prefetch(p + cols_);
-#endif
+    core::prefetch(p);
+    core::prefetch(p + cols_);
   }
   Vec3 normal(double x, double y) const;     // unit, from the bilinear surface's gradient
   bool contains(double x, double y) const {
