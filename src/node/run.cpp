@@ -309,8 +309,14 @@ int run_command(const RunOptions& opt) {
   }
 #endif
   // --- network end ---
-  if (o.start_at && !replay_on)  // with --replay, --start-at is the recording's t = 0: no wait
+  if (o.start_at && !replay_on) {  // with --replay, --start-at is the recording's t = 0: no wait
     while (wall_now() < *o.start_at) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    // Ready later than --start-at but less than kJoinAfterS (a slow start): t = 0 is now, so this
+    // node's clock runs behind the exercise's all run long. Say by how much (tests read it).
+    if (const double late = wall_now() - *o.start_at; paced && !joining && late > o.dt && !o.quiet)
+      std::fprintf(stderr, "npsnet: started %.3f s past --start-at (under %.0f s: not a join); this node's clock "
+                   "runs that much behind the exercise's\n", late, kJoinAfterS);
+  }
   std::unique_ptr<TrackLog> track;  // --track-every
   if (o.track_every) track = std::make_unique<TrackLog>(*o.track_every, o.dt);
   std::unique_ptr<CheckpointWriter> checkpoint;  // --checkpoint

@@ -130,6 +130,13 @@ std::string read_text(const std::filesystem::path& file) {
   return ss.str();
 }
 
+double start_lag_s(const std::filesystem::path& out) {
+  const std::string text = read_text(out);
+  const std::string key = "npsnet: started ";
+  const auto at = text.find(key);
+  return at == std::string::npos ? 0.0 : std::strtod(text.c_str() + at + key.size(), nullptr);
+}
+
 std::vector<std::string> node_args(const std::string& scenario, int port, int node, double start_at, double seconds,
                                    const std::filesystem::path& dir, const std::string& tag) {
   char s[64];

@@ -54,5 +54,8 @@ std::vector<nlohmann::json> read_events(const std::filesystem::path& file);
 // The events of one type ("collision", "crater", ...), in order.
 std::vector<nlohmann::json> of_type(const std::vector<nlohmann::json>& events, const std::string& type);
 std::string read_text(const std::filesystem::path& file);
+// How late (s) a node started past its --start-at, from its output `out` ("npsnet: started X s
+// past --start-at"): its event times run that much behind the test's wall clock. 0 when on time.
+double start_lag_s(const std::filesystem::path& out);
 
 }  // namespace lan
