@@ -23,6 +23,8 @@
 //   (default: the table's), its median printed, no CSV: for a profiler (callgrind
 //   --toggle-collect='npsnet::node::Simulation::tick()': two runs, T and T + 30, give the
 //   instructions of 30 steady ticks).
+//   --prewake 0: no wake-up of the pool ahead of each tick (default 1: as a paced node, run.cpp):
+//   the tick's thread wakes the sleeping worker itself (~11 us at 500 vehicles).
 #include <unistd.h>
 
 #include <algorithm>
@@ -72,7 +74,15 @@ struct Node {
     }
   }
   std::vector<double> cpu_ms;  // the process's CPU time over the tick (every thread of it)
-  void timed_tick() {
+  // prewake: as a paced node does (node/run.cpp), the pool's workers are woken untimed a little
+  // before the tick, so that they spin into its first stage instead of sleeping.
+  void timed_tick(bool prewake) {
+    if (prewake && sim.jobs()) {
+      sim.jobs()->wake();
+      const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(60);
+      while (std::chrono::steady_clock::now() < until) {
+      }
+    }
     const double c0 = cpu_now_ms();
     const auto t0 = std::chrono::steady_clock::now();
     sim.tick();
@@ -109,7 +119,7 @@ int main(int argc, char** argv) {
   std::vector<int> ns = {500, 1000, 2000, 5000, 10000, 20000, 50000, 100000, 200000};
   std::string csv = std::string(NPSNET_SOURCE_DIR) + "/bench/results/tick_scaling.csv";
   int one_net = -1, one_threads = 1, ticks_override = 0;
-  bool some_n = false, csv_given = false;
+  bool some_n = false, csv_given = false, prewake = true;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) ns = {500, 5000}, csv.clear();
     else if (!std::strcmp(argv[i], "--one") && i + 1 < argc &&
@@ -118,6 +128,7 @@ int main(int argc, char** argv) {
       csv.clear();
     else if (!std::strcmp(argv[i], "--ticks") && i + 1 < argc && (ticks_override = std::atoi(argv[++i])) > 0) {
     }
+    else if (!std::strcmp(argv[i], "--prewake") && i + 1 < argc) prewake = std::atoi(argv[++i]) != 0;
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i], csv_given = true;
     else if (!std::strcmp(argv[i], "--n") && i + 1 < argc) {
       some_n = true;
@@ -125,7 +136,7 @@ int main(int argc, char** argv) {
       std::stringstream ss(argv[++i]);
       for (std::string t; std::getline(ss, t, ',');) ns.push_back(std::stoi(t));
     } else {
-      std::fprintf(stderr, "usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T]]\n");
+      std::fprintf(stderr, "usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T]] [--prewake 0|1]\n");
       return 2;
     }
   }
@@ -149,7 +160,7 @@ int main(int argc, char** argv) {
     if (one_net >= 0) {  // one node alone (profiling)
       Node nd(w, sc, one_threads, one_net == 1, "-one.jsonl");
       for (int i = 0; i < warm; ++i) nd.sim.tick();
-      for (int i = 0; i < ticks; ++i) nd.timed_tick();
+      for (int i = 0; i < ticks; ++i) nd.timed_tick(prewake);
       std::printf("%8d %9zu %6d | %s, %d thread(s): median %.3f ms, cpu %.3f ms | %d\n", n, w.ents.size(), ticks,
                   one_net ? "net on" : "net off", one_threads, nd.median(), nd.cpu_median(), nd.collisions());
       if (nd.bridge)  // what net out sent: the same bits before and after a change to it
@@ -164,7 +175,7 @@ int main(int argc, char** argv) {
     for (auto& nd : nodes)
       for (int i = 0; i < warm; ++i) nd->sim.tick();
     for (int i = 0; i < ticks; ++i)
-      for (auto& nd : nodes) nd->timed_tick();
+      for (auto& nd : nodes) nd->timed_tick(prewake);
     for (size_t k = 0; k < nodes.size(); k += 2)
       if (nodes[k]->events() != nodes[k + 1]->events()) {
         std::fprintf(stderr, "N = %d: the event logs of 1 and 2 threads differ\n", n);
