@@ -40,6 +40,7 @@
 #include <string>
 #include <vector>
 
+#include "core/jobs.hpp"
 #include "node/net_bridge.hpp"
 #include "node/simulation.hpp"
 
@@ -79,7 +80,7 @@ struct Node {
   void timed_tick(bool prewake) {
     if (prewake && sim.jobs()) {
       sim.jobs()->wake();
-      const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(60);
+      const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(core::Jobs::kPrewakeUs);
       while (std::chrono::steady_clock::now() < until) {
       }
     }

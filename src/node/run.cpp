@@ -45,9 +45,8 @@ double wall_now() {
 // caught up headless); one started less late (a slow process start) starts at t = 0 then, as
 // before issue 11 (its clock that much behind the exercise's).
 constexpr double kJoinAfterS = 2.0;
-// A paced node wakes its tick's worker threads this long before the tick's deadline (less than
-// core::Jobs::kSpinUs, for which they spin, with the timer's overshoot: ~60 us here).
-constexpr auto kPrewake = std::chrono::microseconds(120);
+// A paced node wakes its tick's worker threads this long before the tick's deadline.
+constexpr auto kPrewake = std::chrono::microseconds(core::Jobs::kPrewakeUs);
 // The whole ticks of dt since the exercise started at start_at (UNIX s): where a late node joins.
 long join_ticks(double start_at, double dt) {
   const double n = std::floor((wall_now() - start_at) / dt + 1e-9);

@@ -137,6 +137,27 @@ double start_lag_s(const std::filesystem::path& out) {
   return at == std::string::npos ? 0.0 : std::strtod(text.c_str() + at + key.size(), nullptr);
 }
 
+bool await_udp_port(int port, double timeout_s) {
+  char want[16];
+  std::snprintf(want, sizeof want, ":%04X", port);
+  const double until = unix_now() + timeout_s;
+  for (int i = 0; i < 100000; ++i) {
+    for (const char* table : {"/proc/net/udp", "/proc/net/udp6"}) {
+      std::ifstream in(table);
+      std::string line, local;
+      std::getline(in, line);  // the header
+      while (std::getline(in, line)) {
+        std::istringstream fields(line);
+        fields >> local >> local;  // "sl", then the local address "HEXIP:PORT"
+        if (local.size() > 5 && local.compare(local.size() - 5, 5, want) == 0) return true;
+      }
+    }
+    if (unix_now() >= until) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
 std::vector<std::string> node_args(const std::string& scenario, int port, int node, double start_at, double seconds,
                                    const std::filesystem::path& dir, const std::string& tag) {
   char s[64];

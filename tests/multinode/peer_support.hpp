@@ -50,6 +50,23 @@ inline Node start_node(lan::Procs& procs, const std::string& tag, const std::str
   return n;
 }
 
+// Waits (at most 20 s) until node `n` listens on its port, before a peer sends it anything: on a
+// loaded machine a node slow to start misses the PDUs sent before (CI saw one start seconds
+// late). Ready after its start time, the node starts its clock that much late and says so
+// (lan::start_lag_s): n.start moves with it, so that the tests' schedules are the node's clock.
+inline bool await_node(Node& n) {
+  const bool bound = lan::await_udp_port(n.port, 20.0);
+  if (bound && lan::unix_now() > n.start) {
+    double lag = 0;
+    for (int i = 0; i < 30 && lag == 0; ++i) {  // said right after its socket is bound (0 when on time)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      lag = lan::start_lag_s(n.out);
+    }
+    n.start += lag;
+  }
+  return bound;
+}
+
 // The peer: application 50 on site 1, same exercise. Its own echo is dropped by its session.
 inline net::SessionConfig peer_config(int port, std::uint16_t app = 50) {
   net::SessionConfig cfg;
@@ -70,11 +87,13 @@ struct Federate {
   npsnet::world::World world;
   lan::Procs procs;
   Node node;
+  bool listening;  // the node's socket was bound before the peer's (await_node)
   net::Session peer;
   Federate(const std::string& tag, const std::string& scenario, double seconds, std::vector<std::string> extra = {},
            std::vector<std::string> env = {})
       : world(world_of(scenario)),
         node(start_node(procs, tag, scenario, seconds, std::move(extra), std::move(env))),
+        listening(await_node(node)),
         peer(peer_config(node.port)) {}
   ~Federate() {
     if (!::testing::Test::HasFailure()) std::filesystem::remove_all(node.dir);
