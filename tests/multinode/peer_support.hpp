@@ -102,7 +102,8 @@ struct Federate {
   ::testing::AssertionResult finished(double timeout_s = 30.0) {
     const int rc = procs.wait(node.pid, timeout_s);
     if (rc == 0) return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure() << "exit " << rc << ": " << lan::read_text(node.out);
+    return ::testing::AssertionFailure() << "exit " << rc << (listening ? "" : " (its port was never bound)") << ": "
+                                         << lan::read_text(node.out);
   }
   std::vector<nlohmann::json> events() const { return lan::read_events(node.events); }
   net::Vec3d ecef(double x, double y, double agl = 0) const;
