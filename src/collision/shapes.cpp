@@ -149,9 +149,10 @@ bool do_simplex(Vec3* s, int& n, Vec3& d) {
 }
 
 // GJK on the Minkowski difference given by its support function: true when it holds the
-// origin (touching counts; 64 iterations without an answer count as overlap).
+// origin (touching counts; 64 iterations without an answer count as overlap, and set
+// *undecided when given: a near-parallel case where the simplex cycles).
 template <class F>
-bool gjk(F&& diff_support, Vec3 d) {
+bool gjk(F&& diff_support, Vec3 d, bool* undecided = nullptr) {
   if (d.squaredNorm() < 1e-18) d = Vec3::UnitX();
   Vec3 s[4];
   int n = 0;
@@ -164,7 +165,35 @@ bool gjk(F&& diff_support, Vec3 d) {
     s[n++] = p;
     if (do_simplex(s, n, d)) return true;
   }
+  if (undecided) *undecided = true;
   return true;
+}
+
+// Triangle t against the prism u sweeps along dl, grown by margin: apart along some axis of
+// the separating-axis theorem (the faces' normals and the edges' cross products; exact for the
+// two polytopes, conservative for the margin's rounding). GJK's fallback when it cycles.
+bool tri_prism_apart(const std::array<Vec3, 3>& t, const std::array<Vec3, 3>& u, const Vec3& dl, double margin) {
+  const Vec3 te[3] = {t[1] - t[0], t[2] - t[1], t[0] - t[2]};
+  const Vec3 ue[4] = {u[1] - u[0], u[2] - u[1], u[0] - u[2], dl};
+  auto apart = [&](const Vec3& n) {
+    const double len = n.norm();
+    if (!(len > 1e-12 * (1 + te[0].squaredNorm() + ue[0].squaredNorm() + dl.squaredNorm()))) return false;
+    double tlo = INFINITY, thi = -INFINITY, ulo = INFINITY, uhi = -INFINITY;
+    for (const Vec3& v : t) tlo = std::min(tlo, v.dot(n)), thi = std::max(thi, v.dot(n));
+    const double sweep = dl.dot(n);
+    for (const Vec3& v : u) {
+      const double x = v.dot(n);
+      ulo = std::min({ulo, x, x + sweep}), uhi = std::max({uhi, x, x + sweep});
+    }
+    return tlo - uhi > margin * len || ulo - thi > margin * len;
+  };
+  if (apart(te[0].cross(te[1])) || apart(ue[0].cross(ue[1]))) return true;
+  for (int i = 0; i < 3; ++i)
+    if (apart(ue[i].cross(dl))) return true;
+  for (const Vec3& a : te)
+    for (const Vec3& b : ue)
+      if (apart(a.cross(b))) return true;
+  return false;
 }
 
 }  // namespace
@@ -314,8 +343,10 @@ bool mesh_overlap_swept(const Shape& a, const Pose& pa, const Shape& b, const Po
       const auto& tb = s.tb[k];
       // The prism b's triangle sweeps, against a's triangle (a at rest in its own frame).
       const Vec3 d0 = (tb[0] + tb[1] + tb[2]) / 3 + 0.5 * dl - (ta[0] + ta[1] + ta[2]) / 3;
+      bool undecided = false;
       if (gjk([&](const Vec3& v) { return Vec3(tri_support(ta, v) - swept(tri_support(tb, -v), dl, -v) + grown(v, margin)); },
-              d0))
+              d0, &undecided) &&
+          !(undecided && tri_prism_apart(ta, tb, dl, margin)))
         return true;
     }
   }
@@ -329,6 +360,7 @@ namespace {
 constexpr double kSampleFraction = 1.0;
 constexpr int kMaxSamples = 64;
 constexpr int kBisections = 20;
+constexpr int kResumes = 4;  // touches passed over (above), at most, before the next one is taken
 }  // namespace
 
 Trace cast_shapes(const Shape& sa, const Pose& a_end, const Vec3& va, const Shape& sb, const Pose& b_end,
@@ -366,21 +398,32 @@ Trace cast_shapes(const Shape& sa, const Pose& a_end, const Vec3& va, const Shap
   // The whole interval first: most pairs whose bounds meet never touch, and one exact swept
   // test per tier says so.
   if (!touching(t_in, t_out)) return out;
-  double lo = t_in, hi = -1;
-  if (touching(t_in, t_in)) hi = t_in, out.started_inside = true;  // touching already at t_in
-  for (int s = 1; s <= n && hi < 0; ++s) {
-    const double t = t_in + (t_out - t_in) * s / n;
-    if (touching(lo, t)) {
-      hi = t;
-      break;
-    }
-    lo = t;
+  if (touching(t_in, t_in)) {  // touching already at t_in
+    out.hit = out.started_inside = true;
+    out.fraction = t_in, out.exit_fraction = t_out;
+    return out;
   }
-  if (hi < 0) return out;
-  // No touch in [t_in, lo); a touch in [lo, hi]: halve down to the first.
-  for (int i = 0; i < kBisections && hi > lo; ++i) {
-    const double m = 0.5 * (lo + hi);
-    (touching(lo, m) ? hi : lo) = m;
+  double lo = t_in, hi = -1;
+  int s = 1;
+  for (int pass = 0;; ++pass) {
+    for (; s <= n && hi < 0; ++s) {
+      const double t = t_in + (t_out - t_in) * s / n;
+      if (t <= lo) continue;  // (a resumed scan: within the interval passed over)
+      if (touching(lo, t)) hi = t;
+      else lo = t;
+    }
+    if (hi < 0) return out;
+    // No touch in [t_in, lo); a touch in [lo, hi]: halve down to the first.
+    for (int i = 0; i < kBisections && hi > lo; ++i) {
+      const double m = 0.5 * (lo + hi);
+      (touching(lo, m) ? hi : lo) = m;
+    }
+    // Every half after the first that touched said no: the last interval was never tested. When
+    // it does not touch, the touch of a longer interval was not real (GJK counts a near-parallel
+    // case it cannot settle as a touch), and halving it gave a time before any contact: the
+    // scan goes on after it.
+    if (pass == kResumes || hi <= lo || touching(lo, hi)) break;
+    lo = hi, hi = -1, s = 1;  // the samples from the first after lo
   }
   out.hit = true;
   out.fraction = hi;

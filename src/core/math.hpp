@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/trig.hpp"
+
 namespace npsnet {
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
@@ -30,10 +32,12 @@ inline double wrap360(double deg) {
   return r < 0 ? r + 360.0 : r;
 }
 // Compass heading (0 = north = +y, 90 = east = +x) to a unit vector in the local frame.
+// Heading (deg, clockwise from north) to its unit direction (east, north) and back, with
+// core/trig.hpp's sincos and atan2 (every vehicle, every tick).
 inline Vec2 heading_to_dir(double heading_deg) {
-  const double h = deg2rad(heading_deg);
-  return {std::sin(h), std::cos(h)};
+  const SinCos v = sincos_deg(heading_deg);
+  return {v.s, v.c};
 }
-inline double dir_to_heading(const Vec2& d) { return wrap360(rad2deg(std::atan2(d.x(), d.y()))); }
+inline double dir_to_heading(const Vec2& d) { return wrap360(rad2deg(atan2_rad(d.x(), d.y()))); }
 inline bool finite(const Vec3& v) { return v.allFinite(); }
 }  // namespace npsnet

@@ -34,8 +34,9 @@ class Gridsquares {
   int cols() const { return cols_; }
   int rows() const { return rows_; }
   double cell_m() const { return cell_; }
-  int col(double x) const { return std::clamp(static_cast<int>(std::floor(x / cell_)), 0, cols_ - 1); }
-  int row(double y) const { return std::clamp(static_cast<int>(std::floor(y / cell_)), 0, rows_ - 1); }
+  // (truncation, not floor: the two differ only below 0, which clamps to 0 either way)
+  int col(double x) const { return std::clamp(static_cast<int>(x / cell_), 0, cols_ - 1); }
+  int row(double y) const { return std::clamp(static_cast<int>(y / cell_), 0, rows_ - 1); }
   int cell_of(double x, double y) const { return row(y) * cols_ + col(x); }
 
  protected:

@@ -1,5 +1,6 @@
 // Angle helpers: wrap360 (core/math.hpp) and atan2_deg_float (core/atan_float.hpp) give the bits
-// of the libm expressions they stand for.
+// of the libm expressions they stand for; sincos_small, sincos_deg and atan2_rad
+// (core/trig.hpp) are within 1-2.5 ulp of long double.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 
 #include "core/atan_float.hpp"
 #include "core/math.hpp"
+#include "core/trig.hpp"
 
 using namespace npsnet;
 
@@ -68,4 +70,70 @@ TEST(Angles, AtanRationalIsWithinTwoUlpsOfLongDouble) {
     }
   }
   EXPECT_LT(worst, 4.5e-16);  // the 1e-12 tolerance of atan2_deg_float is thousands of times this
+}
+
+TEST(Angles, SinCosSmallIsWithinOneUlpOfLongDouble) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> any(-kSinCosSmallMax, kSinCosSmallMax), e(-30.0, 0.0);
+  auto ulps = [](double got, long double ref) {
+    const double r = static_cast<double>(ref);
+    const double ulp = std::nextafter(std::abs(r), HUGE_VAL) - std::abs(r);
+    return static_cast<double>(std::fabs(got - ref)) / ulp;
+  };
+  double worst_s = 0, worst_c = 0;
+  int differ = 0;  // from libm: it is not libm's bits, only as close
+  const std::vector<double> edges = {0.0, -0.0, kSinCosSmallMax, -kSinCosSmallMax, 1e-300, -5e-324, 1e-8, 0.5};
+  for (int i = 0; i < 2000000; ++i) {
+    const double x = i < static_cast<int>(edges.size()) ? edges[i]
+                     : i % 2               ? any(rng)
+                                           : std::copysign(std::pow(10.0, e(rng)), any(rng));
+    const SinCos v = sincos_small(x);
+    worst_s = std::max(worst_s, x == 0 ? 0.0 : ulps(v.s, std::sin(static_cast<long double>(x))));
+    worst_c = std::max(worst_c, ulps(v.c, std::cos(static_cast<long double>(x))));
+    differ += v.s != std::sin(x) || v.c != std::cos(x);
+  }
+  EXPECT_LE(worst_s, 1.0);
+  EXPECT_LE(worst_c, 1.0);
+  EXPECT_GT(differ, 0);  // (so the test above is of this function, not of libm)
+  EXPECT_TRUE(same_bits(sincos_small(0.0).s, 0.0) && same_bits(sincos_small(-0.0).s, -0.0));
+  EXPECT_EQ(sincos_small(0.0).c, 1.0);
+}
+
+TEST(Angles, SinCosDegAndAtan2RadAreWithinTwoAndTwoAndAHalfUlpsOfLongDouble) {
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> deg(-720.0, 720.0), any(-1.0, 1.0), e(-12.0, 12.0);
+  constexpr long double kDeg = 3.14159265358979323846264338327950288L / 180;
+  // Error in ulps of the result, or of 1 for a result near 0 (sin of a multiple of 180 degrees
+  // is 0 exactly here; libm's sin(pi) is 1.2e-16).
+  auto ulps = [](double got, long double ref) {
+    const double r = std::max(std::abs(static_cast<double>(ref)), 0.25);
+    return static_cast<double>(std::fabs(got - ref)) / (std::nextafter(r, HUGE_VAL) - r);
+  };
+  double worst_sc = 0, worst_at = 0;
+  const std::vector<double> edges = {0, -0.0, 45, 90, 135, 180, 270, 360, -90, 1e-300, 44.999999999999, 1e15};
+  for (int i = 0; i < 1000000; ++i) {
+    const double d = i < static_cast<int>(edges.size()) ? edges[i] : deg(rng);
+    const SinCos v = sincos_deg(d);
+    const long double rad = std::fmod(static_cast<long double>(d), 360.0L) * kDeg;  // (fmod is exact)
+    worst_sc = std::max({worst_sc, ulps(v.s, std::sin(rad)), ulps(v.c, std::cos(rad))});
+    const double y = i % 3 ? any(rng) : std::copysign(std::pow(10.0, e(rng)), any(rng)), x = any(rng);
+    const long double ref = std::atan2(static_cast<long double>(y), static_cast<long double>(x));
+    const double at = atan2_rad(y, x);
+    worst_at = std::max(worst_at, static_cast<double>(std::fabs(at - ref) / std::fabs(ref)) / 0x1p-53);
+  }
+  EXPECT_LE(worst_sc, 2.0);
+  EXPECT_LE(worst_at, 5.0);  // relative error in units of 2^-53 (2.5 ulp at worst)
+  // The right angles are exact, and so is their quadrant.
+  for (int q = -8; q <= 8; ++q) {
+    const SinCos v = sincos_deg(90.0 * q);
+    const int m = ((q % 4) + 4) % 4;
+    EXPECT_EQ(v.s, m == 1 ? 1.0 : m == 3 ? -1.0 : 0.0) << q;
+    EXPECT_EQ(v.c, m == 0 ? 1.0 : m == 2 ? -1.0 : 0.0) << q;
+  }
+  // atan2's special cases and signs: libm's.
+  for (double y : {0.0, -0.0, 1.0, -1.0})
+    for (double x : {0.0, -0.0, 2.0, -2.0})
+      EXPECT_TRUE(same_bits(atan2_rad(y, x), std::atan2(y, x))) << y << " " << x;
+  EXPECT_TRUE(std::isnan(sincos_deg(NAN).s) && std::isnan(atan2_rad(NAN, 1.0)));
+  EXPECT_EQ(atan2_rad(1.0, 1.0), std::atan2(1.0, 1.0));
 }

@@ -1,0 +1,93 @@
+// Trigonometry of the hot loops without libm: every vehicle's heading direction, its heading to a
+// waypoint and the half angles of its pose are a few of these a tick (a libm sincos or atan2 is
+// about 110-150 instructions; these 30-60), with the same bits on every libm. Within 1 ulp of
+// the exact value (sincos_small), 2 ulp (sincos_deg: the degrees' conversion rounds too) and
+// 2.5 ulp (atan2_rad), measured against long double in tests/core/test_angles.cpp; not libm's bits.
+//  sincos_small(x): |x| <= pi/4, the Taylor series to x^19 and x^20 (the first term left out is
+//    below 1e-19 there), Horner form.
+//  sincos_deg(deg): any finite angle in degrees: reduced by a multiple of 90 degrees in degrees
+//    (exact below 2^52), so 90, 180, 270 give exact 0 and +-1. NaN, infinite and huge: libm.
+//  atan2_rad(y, x): atan2 from a rational atan (Cephes atan.c), with atan2's quadrants.
+#pragma once
+#include <cmath>
+#include <numbers>
+
+namespace npsnet {
+
+struct SinCos {
+  double s, c;
+};
+
+inline constexpr double kSinCosSmallMax = std::numbers::pi / 4;
+
+// sin and cos of x for |x| <= kSinCosSmallMax (a larger x loses accuracy: the caller checks).
+inline SinCos sincos_small(double x) {
+  // (-1)^k / (2k+1)! and (-1)^k / (2k)!, rounded to double.
+  constexpr double S3 = -1.66666666666666657415e-01, S5 = 8.33333333333333321769e-03,
+                   S7 = -1.98412698412698412526e-04, S9 = 2.75573192239858925110e-06,
+                   S11 = -2.50521083854417202239e-08, S13 = 1.60590438368216133409e-10,
+                   S15 = -7.64716373181981640551e-13, S17 = 2.81145725434552059811e-15,
+                   S19 = -8.22063524662432949554e-18;
+  constexpr double C4 = 4.16666666666666643537e-02, C6 = -1.38888888888888894189e-03,
+                   C8 = 2.48015873015873015658e-05, C10 = -2.75573192239858882758e-07,
+                   C12 = 2.08767569878681001866e-09, C14 = -1.14707455977297245073e-11,
+                   C16 = 4.77947733238738525345e-14, C18 = -1.56192069685862252711e-16,
+                   C20 = 4.11031762331216484407e-19;
+  const double z = x * x;
+  const double ps = S3 + z * (S5 + z * (S7 + z * (S9 + z * (S11 + z * (S13 + z * (S15 + z * (S17 + z * S19)))))));
+  const double pc = C4 + z * (C6 + z * (C8 + z * (C10 + z * (C12 + z * (C14 + z * (C16 + z * (C18 + z * C20)))))));
+  // The small corrections first, the leading terms last: one rounding of the leading sum.
+  const double hz = 0.5 * z;
+  const double s = x + x * z * ps;
+  return {x == 0 ? x : s, (1.0 - hz) + ((1.0 - (1.0 - hz)) - hz + z * z * pc)};  // (sin(-0) is -0)
+}
+
+// sin and cos of an angle in degrees.
+inline SinCos sincos_deg(double deg) {
+  if (!(std::abs(deg) < 0x1p52)) {  // NaN, infinite, or too large to reduce exactly here
+    const double r = deg * (std::numbers::pi / 180);
+    return {std::sin(r), std::cos(r)};
+  }
+  const long long q = static_cast<long long>(deg / 90.0 + (deg < 0 ? -0.5 : 0.5));  // nearest (no libm)
+  const double r = deg - 90.0 * static_cast<double>(q);  // exact: 90 q is an integer, a multiple of deg's ulp
+  const SinCos v = sincos_small(r * (std::numbers::pi / 180));
+  switch (q & 3) {  // sin(r + 90) = cos r, cos(r + 90) = -sin r
+    case 0: return v;
+    case 1: return {v.c, -v.s};
+    case 2: return {-v.s, -v.c};
+    default: return {-v.c, v.s};
+  }
+}
+
+namespace detail {
+// atan(v), relative error about 1 ulp (Cephes: three ranges, a 4/5 rational in v^2).
+inline double atan_rational(double v) {
+  constexpr double P[] = {-8.750608600031904122785E-1, -1.615753718733365076637E1, -7.500855792314704667340E1,
+                          -1.228866684490136173410E2, -6.485021904942025371773E1};
+  constexpr double Q[] = {2.485846490142306297962E1, 1.650270098316988542046E2, 4.328810604912902668951E2,
+                          4.853903996359136964868E2, 1.945506571482613964425E2};
+  constexpr double kTan3Pi8 = 2.41421356237309504880, kMoreBits = 6.123233995736765886130E-17;
+  const bool neg = v < 0;
+  double t = neg ? -v : v, base = 0, more = 0;
+  if (t > kTan3Pi8) base = std::numbers::pi / 2, more = kMoreBits, t = -1.0 / t;
+  else if (t > 0.66) base = std::numbers::pi / 4, more = 0.5 * kMoreBits, t = (t - 1.0) / (t + 1.0);
+  const double z = t * t;
+  const double p = (((P[0] * z + P[1]) * z + P[2]) * z + P[3]) * z + P[4];
+  const double q = ((((z + Q[0]) * z + Q[1]) * z + Q[2]) * z + Q[3]) * z + Q[4];
+  const double r = base + ((t * (z * p / q) + t) + more);
+  return neg ? -r : r;
+}
+}  // namespace detail
+
+// atan2(y, x) for finite y, x (either infinite or NaN: libm's): the angle of (x, y) in radians,
+// in [-pi, pi]; the signs of zeros as atan2 gives them.
+inline double atan2_rad(double y, double x) {
+  if (!std::isfinite(y) || !std::isfinite(x) || x == 0 || y == 0) return std::atan2(y, x);
+  const double ax = std::abs(x), ay = std::abs(y);
+  // The smaller over the larger, so the quotient rounds once: pi/2 - atan(x/y) beyond 45 degrees.
+  double a = ay <= ax ? detail::atan_rational(ay / ax) : std::numbers::pi / 2 - detail::atan_rational(ax / ay);
+  if (x < 0) a = std::numbers::pi - a;
+  return y < 0 ? -a : a;
+}
+
+}  // namespace npsnet
