@@ -233,11 +233,11 @@ class Detector {
   std::vector<Hpr> start_hpr_, prev_hpr_;
   std::vector<int16_t> prev_kind_;
   std::vector<uint8_t> prev_ok_;
-  // world::entity_centre(w, e) at the end of the tick, e's yaw quaternion (world::yaw_quaternion)
+  // world::entity_centre(w, e) at the end of the tick, e's heading direction (heading_to_dir)
   // kept from an earlier tick while its heading is the same float, bit for bit (a vehicle driving
   // straight keeps it: one sincos fewer); yaw_bits_ = that heading's bits (a NaN: none yet).
   Vec3 centre_end(const world::World& w, int e);
-  std::vector<Eigen::Quaterniond> yaw_q_;
+  std::vector<Vec2> yaw_dir_;
   std::vector<uint32_t> yaw_bits_;
   Motion motion(const world::World& w, int e) const;  // entity e's motion over this tick
   core::Jobs* jobs_ = nullptr;

@@ -7,11 +7,10 @@ namespace npsnet::world {
 
 // Compass heading (deg, clockwise from north), pitch (deg, nose up), roll (deg, right side down).
 Mat3 pose_rotation(double heading_deg, double pitch_deg, double roll_deg);
-// The heading's part of pose_rotation, for a caller that keeps it while the heading stays the
-// same (collision, from tick to tick): pose_rotation(yaw_quaternion(h), p, r) is
-// pose_rotation(h, p, r) bit for bit (the same quaternion products in the same order).
-Eigen::Quaterniond yaw_quaternion(double heading_deg);
-Mat3 pose_rotation(const Eigen::Quaterniond& yaw, double pitch_deg, double roll_deg);
+// The same from the heading's direction, heading_to_dir(h), for a caller that keeps it while the
+// heading stays the same (collision, from tick to tick): pose_rotation(heading_to_dir(h), p, r)
+// is pose_rotation(h, p, r) bit for bit. Sines and cosines from core/trig.hpp.
+Mat3 pose_rotation(const Vec2& heading_dir, double pitch_deg, double roll_deg);
 
 inline Vec3 entity_centre(const World& w, size_t e) {
   const Kind& k = w.kinds[w.ents.kind[e]];

@@ -39,7 +39,7 @@ TEST(Pose, KeptYawQuaternionGivesTheSameBitsAndBothAreTheThreeAngleForm) {
     const Mat3 m = world::pose_rotation(h, p, r);
     const Mat3 libm = (Eigen::AngleAxisd(-deg2rad(h), Vec3::UnitZ()) * Eigen::AngleAxisd(deg2rad(p), Vec3::UnitX()) *
                        Eigen::AngleAxisd(deg2rad(r), Vec3::UnitY())).toRotationMatrix();  // the old one, in double
-    ASSERT_TRUE(same_bits(world::pose_rotation(world::yaw_quaternion(h), p, r), m)) << h << " " << p << " " << r;
+    ASSERT_TRUE(same_bits(world::pose_rotation(heading_to_dir(h), p, r), m)) << h << " " << p << " " << r;
     worst = std::max(worst, (m - ref).cwiseAbs().maxCoeff());
     worst_libm = std::max(worst_libm, (libm - ref).cwiseAbs().maxCoeff());
     ortho = std::max(ortho, (m * m.transpose() - Mat3::Identity()).cwiseAbs().maxCoeff());
