@@ -4,7 +4,7 @@
 // the exact value (sincos_small), 2 ulp (sincos_deg: the degrees' conversion rounds too) and
 // 2.5 ulp (atan2_rad), measured against long double in tests/core/test_angles.cpp; not libm's bits.
 //  sincos_small(x): |x| <= pi/4, the Taylor series to x^17 and x^16 (the first terms left out,
-//    x^19/19! and x^18/18!, are below 1e-19 and 2e-18 there: under 0.02 ulp), Horner form.
+//    x^19/19! and x^18/18!, are below 1e-19 and 2e-18 there: under 0.02 ulp), in Estrin's form.
 //  sincos_deg(deg): any finite angle in degrees: reduced by a multiple of 90 degrees in degrees
 //    (exact below 2^52), so 90, 180, 270 give exact 0 and +-1. NaN, infinite and huge: libm.
 //  atan2_rad(y, x): atan2 from a rational atan (Cephes atan.c), with atan2's quadrants.
@@ -31,9 +31,11 @@ inline SinCos sincos_small(double x) {
                    C8 = 2.48015873015873015658e-05, C10 = -2.75573192239858882758e-07,
                    C12 = 2.08767569878681001866e-09, C14 = -1.14707455977297245073e-11,
                    C16 = 4.77947733238738525345e-14;
-  const double z = x * x;
-  const double ps = S3 + z * (S5 + z * (S7 + z * (S9 + z * (S11 + z * (S13 + z * (S15 + z * S17))))));
-  const double pc = C4 + z * (C6 + z * (C8 + z * (C10 + z * (C12 + z * (C14 + z * C16)))));
+  // Estrin's scheme (pairs, then powers z^2 and z^4): a third of Horner's chain of dependent
+  // multiply-adds, so that a vehicle's few of these overlap instead of waiting on each other.
+  const double z = x * x, z2 = z * z, z4 = z2 * z2;
+  const double ps = (S3 + S5 * z) + z2 * (S7 + S9 * z) + z4 * ((S11 + S13 * z) + z2 * (S15 + S17 * z));
+  const double pc = (C4 + C6 * z) + z2 * (C8 + C10 * z) + z4 * ((C12 + C14 * z) + z2 * C16);
   // The small corrections first, the leading terms last: one rounding of the leading sum.
   const double hz = 0.5 * z;
   const double s = x + x * z * ps;
