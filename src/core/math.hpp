@@ -31,9 +31,8 @@ inline double wrap360(double deg) {
   double r = std::fmod(deg, 360.0);
   return r < 0 ? r + 360.0 : r;
 }
-// Compass heading (0 = north = +y, 90 = east = +x) to a unit vector in the local frame.
-// Heading (deg, clockwise from north) to its unit direction (east, north) and back, with
-// core/trig.hpp's sincos and atan2 (every vehicle, every tick).
+// Compass heading (0 = north = +y, 90 = east = +x) to a unit vector in the local frame, and back,
+// with core/trig.hpp's sincos and atan2 (every vehicle, every tick).
 inline Vec2 heading_to_dir(double heading_deg) {
   const SinCos v = sincos_deg(heading_deg);
   return {v.s, v.c};
