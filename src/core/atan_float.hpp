@@ -3,7 +3,8 @@
 // atan (detail::atan_rational in core/trig.hpp, from Cephes atan.c: relative error 2.0e-16
 // measured against long double over 40 million arguments, tests/core/test_angles.cpp) gives d;
 // when every value within 1e-12 |d| of d rounds to the same float, the libm result (within a few
-// 1e-16 |d| of d) rounds to it too, so that float is returned; otherwise (about 2 in 100,000 slopes) the libm expression is evaluated.
+// 1e-16 |d| of d) rounds to it too, so that float is returned; otherwise (about 2 in 100,000
+// slopes) the libm expression is evaluated.
 // y = +-0 gives +-0 (what atan2 gives for x > 0); NaN and infinite y go the same way as libm's.
 #pragma once
 #include <cmath>
