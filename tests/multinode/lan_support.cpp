@@ -137,6 +137,13 @@ double start_lag_s(const std::filesystem::path& out) {
   return at == std::string::npos ? 0.0 : std::strtod(text.c_str() + at + key.size(), nullptr);
 }
 
+double worst_late_s(const std::filesystem::path& out) {
+  const std::string text = read_text(out);
+  const std::string key = "ticks ended past their deadline, the worst by ";
+  const auto at = text.find(key);
+  return at == std::string::npos ? 0.0 : std::strtod(text.c_str() + at + key.size(), nullptr) / 1000;
+}
+
 bool await_udp_port(int port, double timeout_s) {
   char want[16];
   std::snprintf(want, sizeof want, ":%04X", port);

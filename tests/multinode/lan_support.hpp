@@ -57,6 +57,10 @@ std::string read_text(const std::filesystem::path& file);
 // How late (s) a node started past its --start-at, from its output `out` ("npsnet: started X s
 // past --start-at"): its event times run that much behind the test's wall clock. 0 when on time.
 double start_lag_s(const std::filesystem::path& out);
+// How far (s) a paced node's ticks ran behind the wall clock at worst, from the summary it prints
+// at the end ("paced: ... the worst by X ms"): a loaded machine can starve a node, whose tick then
+// reads what arrived up to that long before its scenario time. 0 when the summary is missing.
+double worst_late_s(const std::filesystem::path& out);
 // Waits (at most timeout_s) until some UDP socket of this machine is bound to `port`
 // (/proc/net/udp and udp6): a node started on that port is listening. False at the timeout.
 bool await_udp_port(int port, double timeout_s);

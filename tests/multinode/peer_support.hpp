@@ -26,7 +26,8 @@ inline const std::filesystem::path kData = std::filesystem::path(NPSNET_SOURCE_D
 struct Node {
   std::filesystem::path dir, events, out;
   int port = 0;
-  double start = 0;  // UNIX time the scenario clock starts
+  double start = 0;     // UNIX time the scenario clock starts (await_node moves it when late)
+  double start_at = 0;  // the --start-at it was given
   int pid = -1;
 };
 
@@ -36,7 +37,7 @@ inline Node start_node(lan::Procs& procs, const std::string& tag, const std::str
   Node n;
   n.dir = lan::fresh_dir(tag);
   n.port = lan::random_port();
-  n.start = lan::unix_now() + lead_s;
+  n.start = n.start_at = lan::unix_now() + lead_s;
   n.events = n.dir / "events.jsonl";
   n.out = n.dir / "out.txt";
   char s[64];
@@ -65,6 +66,12 @@ inline bool await_node(Node& n) {
     n.start += lag;
   }
   return bound;
+}
+
+// The scenario time node `n` had reached, at worst, when the wall clock read `unix_s`, from what it
+// said once it ended: its late start (whenever it said it) and how far its ticks ran behind.
+inline double node_time_at_least(const Node& n, double unix_s) {
+  return unix_s - (n.start_at + lan::start_lag_s(n.out)) - lan::worst_late_s(n.out);
 }
 
 // The peer: application 50 on site 1, same exercise. Its own echo is dropped by its session.
