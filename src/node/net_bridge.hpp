@@ -192,7 +192,8 @@ class NetBridge {
   // management, and sends heartbeats of our vehicles standing still with the Frozen Status
   // appearance bit (21) only when it has "transmit updates" (bit 1). Start/Resume restarts the
   // clock at its real-world time and, when its simulation time is not zero, at that scenario
-  // time (s). Remove Entity (receiving id = one of our vehicles, or entity 0xFFFF = all of
+  // time (s); else, when the freeze had "run simulation clock" (bit 0), at the scenario time the
+  // clock ran to meanwhile (the entities stood still), else where it stopped. Remove Entity (receiving id = one of our vehicles, or entity 0xFFFF = all of
   // them) takes it out: a deactivation Entity State, no more publishing, inactive here.
   bool frozen();
   void idle();
@@ -289,6 +290,7 @@ class NetBridge {
   std::vector<double> announce_at_;          // per own vehicle: scenario time of the next one
   // Simulation management: pending freeze / resume (UNIX s, -1 none), scenario time to resume at.
   double freeze_at_ = -1, resume_at_ = -1, resume_sim_t_ = -1, frozen_hb_s_ = 0;
+  double frozen_since_ = 0, frozen_t_ = 0;  // UNIX s and scenario time the clock stopped at
   bool frozen_ = false;
   std::uint8_t frozen_behavior_ = 0;
   std::uint64_t ground_es_sent_ = 0;

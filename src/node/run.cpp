@@ -404,14 +404,14 @@ int run_command(const RunOptions& opt) {
   PaceStats pace;  // paced runs: how far behind the wall clock the ticks ran (printed at the end)
   try {
     for (long i = first; go_on(i); ++i, ++done) {
-      const auto tick_start = std::chrono::steady_clock::now();
 #ifdef NPSNET_HAVE_NET
-      if (bridge && bridge->frozen()) {  // Stop/Freeze: the scenario clock stands still
+      if (bridge && bridge->frozen()) {  // Stop/Freeze: the run loop's clock stands still
         const auto f0 = std::chrono::steady_clock::now();
         while (bridge->frozen()) bridge->idle();
         t0 += std::chrono::steady_clock::now() - f0;
       }
 #endif
+      const auto tick_start = std::chrono::steady_clock::now();  // (after a freeze: not its time)
       const auto deadline = t0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                      std::chrono::duration<double>((i + 1) * o.dt));
 #ifdef NPSNET_HAVE_RENDER

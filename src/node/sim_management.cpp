@@ -116,11 +116,13 @@ bool NetBridge::frozen() {
     freeze_at_ = -1;
     frozen_ = true;
     frozen_hb_s_ = -1e9;
+    frozen_since_ = now, frozen_t_ = sim_.world().t;
     log_.write(event("frozen"));
   }
   if (resume_at_ >= 0 && now >= resume_at_) {
     resume_at_ = -1;
     if (resume_sim_t_ >= 0) sim_.set_time(resume_sim_t_);
+    else if (frozen_ && (frozen_behavior_ & kFrozenRunClock)) sim_.set_time(frozen_t_ + (now - frozen_since_));
     resume_sim_t_ = -1;
     if (frozen_) log_.write(event("resumed"));
     frozen_ = false;

@@ -1,10 +1,12 @@
 // Simulation management (issue 10, defect 4), through the real path: an exercise-control peer
 // (application 50) freezes the node, resumes it at a given simulation time and removes one of
 // its vehicles; every request is answered with an Acknowledge carrying its request id
-// (IEEE 1278.1-2012 5.6.5, 7.5).
+// (IEEE 1278.1-2012 5.6.5, 7.5). A freeze whose frozen behaviour has "run simulation clock"
+// (bit 0) resumes at the time the clock ran to; the time frozen is never counted as a tick's.
 #include <gtest/gtest.h>
 
 #include <map>
+#include <regex>
 
 #include "peer_support.hpp"
 
@@ -91,4 +93,60 @@ TEST(FederateSiman, FreezeResumeRemoveEachAcknowledged) {
   }
   EXPECT_TRUE(removed);
   EXPECT_GE(last_t, 20.0) << "events after the resume carry the resumed scenario time";
+}
+
+// The longest tick (s) the node's "paced:" summary names; -1 without one.
+static double longest_tick_s(const std::string& out) {
+  std::smatch m;
+  if (!std::regex_search(out, m, std::regex(R"(longest tick ([0-9.]+) ms)"))) return -1;
+  return std::stod(m[1].str()) / 1000;
+}
+
+TEST(FederateSiman, RunSimulationClockBitMovesTheClockOnWhileFrozen) {
+  fed::Federate f("fed_runclock", "federate.toml", 4);
+  const auto& node = f.node;
+  auto& peer = f.peer;
+  const net::EntityId control = peer.entity_id(0);
+  std::map<std::uint32_t, double> acked;  // request id -> when its Acknowledge was heard (UNIX s)
+  auto visit = net::Overloaded{[&](const net::AcknowledgePdu& p) {
+    if (p.originating_id.site == 1 && p.originating_id.application == 1) acked[p.request_id] = lan::unix_now();
+  }};
+  auto freeze = [&](std::uint8_t behaviour, std::uint32_t request) {
+    net::StopFreezePdu stop;
+    stop.originating_id = control;
+    stop.receiving_id = {1, 1, 0};
+    stop.reason = 1;  // recess
+    stop.frozen_behavior = behaviour;
+    stop.request_id = request;
+    peer.send(stop);
+  };
+  auto resume = [&](std::uint32_t request) {  // simulation time zero: keep the scenario clock
+    net::StartResumePdu start;
+    start.originating_id = control;
+    start.receiving_id = {1, 1, 0};
+    start.request_id = request;
+    peer.send(start);
+  };
+  fed::poll_until(peer, node.start + 0.8, visit);
+  freeze(1, 1);  // run simulation clock
+  fed::poll_until(peer, node.start + 2.3, visit);
+  resume(2);
+  fed::poll_until(peer, node.start + 2.8, visit);
+  freeze(0, 3);  // the clock stops
+  fed::poll_until(peer, node.start + 3.8, visit);
+  resume(4);
+  fed::poll_until(peer, node.start + 7.0, visit);
+  ASSERT_TRUE(f.finished());
+  ASSERT_TRUE(acked.count(1) && acked.count(2) && acked.count(3) && acked.count(4)) << "an Acknowledge for every request";
+  const auto ev = f.events();
+  const auto frozen = fed::of_type(ev, "frozen"), resumed = fed::of_type(ev, "resumed");
+  ASSERT_EQ(frozen.size(), 2u);
+  ASSERT_EQ(resumed.size(), 2u);
+  const double ran = resumed[0]["t"].get<double>() - frozen[0]["t"].get<double>();
+  EXPECT_NEAR(ran, acked[2] - acked[1], 0.3) << "bit 0: the scenario clock ran on while frozen (1.5 s)";
+  EXPECT_EQ(resumed[1]["t"].get<double>(), frozen[1]["t"].get<double>()) << "bit 0 clear: the clock stood still";
+  const std::string out = lan::read_text(node.out);
+  const double longest = longest_tick_s(out);
+  EXPECT_GE(longest, 0) << out;
+  EXPECT_LT(longest, 0.9) << "the second (1 s) and first (1.5 s) freezes are no tick's time: " << out;
 }
