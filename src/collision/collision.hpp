@@ -224,7 +224,9 @@ class Detector {
   std::vector<float> fixed_x_, fixed_y_, fixed_r_;  // fixed objects' test circles (m)
   size_t fixed_indexed_ = static_cast<size_t>(-1);
   IdRank rank_, fixed_rank_;
-  int64_t ranked_created_ = -1;
+  int64_t ranked_created_ = -1;  // the entity table ranked last (world::Entities::made_since)
+  uint64_t ranked_lineage_ = 0;
+  std::vector<uint32_t> made_;
   std::vector<Shape> shapes_;           // per model index
   // Turning during the tick (per entity slot): the orientation (heading, pitch, roll, deg) at the
   // start of this tick = the end of the last one when the slot held the same kind and was active

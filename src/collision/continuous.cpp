@@ -204,9 +204,12 @@ Vec3 Detector::centre_end(const world::World& w, int e) {
 }
 
 void Detector::rank_ids(const world::World& w) {
-  if (ranked_created_ != w.ents.created || rank_.ranks().size() != w.ents.size()) {  // ids made or reclaimed
-    rank_.update(w.ents.id);
-    ranked_created_ = w.ents.created;
+  if (ranked_created_ != w.ents.created || ranked_lineage_ != w.ents.lineage.v ||
+      rank_.ranks().size() != w.ents.size()) {  // ids made or reclaimed
+    made_.clear();
+    if (w.ents.made_since(ranked_lineage_, ranked_created_, made_)) rank_.update(w.ents.id, made_);
+    else rank_.update(w.ents.id);
+    ranked_created_ = w.ents.created, ranked_lineage_ = w.ents.lineage.v;
   }
   if (fixed_rank_.ranks().size() != w.fixed.size()) fixed_rank_.update(w.fixed.id);
 }

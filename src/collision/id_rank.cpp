@@ -1,4 +1,4 @@
-// Incremental ranking of entity ids (id_rank.hpp).
+// Ranking of entity ids, whole or by the slots made since the last call (id_rank.hpp).
 #include "collision/id_rank.hpp"
 
 #include <algorithm>
@@ -14,32 +14,69 @@ uint64_t id_prefix_key(const std::string& s) {
   return k;
 }
 
-void IdRank::update(const std::vector<std::string>& ids) {
-  const size_t n = ids.size();
-  // The prefix keys decide most comparisons (id_rank.hpp); equal keys fall back to the strings.
-  auto less = [&](uint32_t x, uint32_t y) {
-    if (key_[x] != key_[y]) return key_[x] < key_[y];
+namespace {
+// (id, index) order: the prefix keys decide most comparisons (id_rank.hpp), then the strings.
+struct Less {
+  const std::vector<std::string>& ids;
+  const std::vector<uint64_t>& key;
+  bool operator()(uint32_t x, uint32_t y) const {
+    if (key[x] != key[y]) return key[x] < key[y];
     const int c = ids[x].compare(ids[y]);
     return c != 0 ? c < 0 : x < y;
-  };
-  if (seen_.size() > n) seen_.clear(), by_.clear();  // the table shrank: rank from scratch
-  fresh_.clear();
+  }
+};
+}  // namespace
+
+void IdRank::update(const std::vector<std::string>& ids) {
+  const size_t n = ids.size();
+  // Room for the rounds to come: no reallocation (a copy of every array) at the first of them.
+  const size_t room = n + n / 8 + 64;
+  key_.reserve(room), by_.reserve(room), rank_.reserve(room), dirty_.reserve(room);
+  key_.resize(n);
+  by_.resize(n);
+  for (size_t i = 0; i < n; ++i) key_[i] = id_prefix_key(ids[i]), by_[i] = static_cast<uint32_t>(i);
+  std::sort(by_.begin(), by_.end(), Less{ids, key_});
+  rank_.resize(n);
+  for (uint32_t r = 0; r < n; ++r) rank_[by_[r]] = r;
+}
+
+void IdRank::update(const std::vector<std::string>& ids, std::span<const uint32_t> made) {
+  const size_t n = ids.size(), old = rank_.size();
+  if (old > n || old == 0) return update(ids);  // a smaller table, or never ranked: from scratch
+  const Less less{ids, key_};
+  // The slots to place: those made (once each) and those appended.
   dirty_.assign(n, 0);
-  for (size_t i = 0; i < n; ++i)
-    if (i >= seen_.size() || ids[i] != seen_[i]) fresh_.push_back(static_cast<uint32_t>(i)), dirty_[i] = 1;
-  if (fresh_.empty() && rank_.size() == n) return;
+  fresh_.clear();
+  for (uint32_t i : made)
+    if (i < n && !dirty_[i]) dirty_[i] = 1, fresh_.push_back(i);
+  for (size_t i = old; i < n; ++i)
+    if (!dirty_[i]) dirty_[i] = 1, fresh_.push_back(static_cast<uint32_t>(i));
+  if (fresh_.empty()) return;
   key_.resize(n);
   for (uint32_t i : fresh_) key_[i] = id_prefix_key(ids[i]);
-  kept_.clear();
-  for (uint32_t i : by_)
-    if (!dirty_[i]) kept_.push_back(i);
   std::sort(fresh_.begin(), fresh_.end(), less);
-  by_.resize(kept_.size() + fresh_.size());
-  std::merge(kept_.begin(), kept_.end(), fresh_.begin(), fresh_.end(), by_.begin(), less);
+  // Out of the kept order: the made slots that had a place (their old ids). first: the lowest
+  // place that moves.
+  size_t first = by_.size();
+  for (uint32_t i : fresh_)
+    if (i < old) first = std::min<size_t>(first, rank_[i]);
+  if (first < by_.size())
+    by_.erase(std::remove_if(by_.begin() + static_cast<std::ptrdiff_t>(first), by_.end(), [&](uint32_t i) { return dirty_[i]; }),
+              by_.end());
+  if (fresh_.size() > kManyMade) {  // many: one merge
+    kept_.assign(by_.begin(), by_.end());
+    by_.resize(n);
+    std::merge(kept_.begin(), kept_.end(), fresh_.begin(), fresh_.end(), by_.begin(), less);
+    first = 0;
+  } else {  // few: each into its place, the largest first (the places of the smaller hold)
+    for (size_t f = fresh_.size(); f-- > 0;) {
+      const auto at = std::lower_bound(by_.begin(), by_.end(), fresh_[f], less);
+      first = std::min<size_t>(first, static_cast<size_t>(at - by_.begin()));
+      by_.insert(at, fresh_[f]);
+    }
+  }
   rank_.resize(n);
-  for (uint32_t r = 0; r < by_.size(); ++r) rank_[by_[r]] = r;
-  seen_.resize(n);
-  for (uint32_t i : fresh_) seen_[i] = ids[i];
+  for (size_t r = first; r < n; ++r) rank_[by_[r]] = static_cast<uint32_t>(r);
 }
 
 std::vector<uint32_t> rank_ids_brute(const std::vector<std::string>& ids) {

@@ -52,7 +52,15 @@ void Entities::reset(int e, std::string id_, int kind_, const Vec3& p, float hea
   loop_route[i] = 0;
   flee_until[i] = calm_until[i] = -1;
   driven[i] = 0;
+  made_slot_[static_cast<size_t>(created % kMadeMemory)] = static_cast<uint32_t>(e);
   ++created;
+}
+
+bool Entities::made_since(uint64_t lineage_then, int64_t created_then, std::vector<uint32_t>& out) const {
+  if (lineage_then != lineage.v || created_then < 0 || created_then > created || created - created_then > kMadeMemory)
+    return false;
+  for (int64_t k = created_then; k < created; ++k) out.push_back(made_slot_[static_cast<size_t>(k % kMadeMemory)]);
+  return true;
 }
 
 bool FixedObjects::valid() const {

@@ -7,6 +7,8 @@
 // it and write only the entity slots they were given; nothing here locks.
 #pragma once
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -63,11 +65,31 @@ struct Entities {
   std::vector<float> calm_until;             // autonomous: no new reaction before this time (s)
   std::vector<uint8_t> driven;               // 1 = a player drives it (dynamics/drive.hpp), not its route
   int64_t created = 0;                       // entities ever made (add or reset): ids change when it does
+  // Which slots the last kMadeMemory entities made went to, for readers that follow the ids
+  // (collision::IdRank): made_since(k, out) appends the slots of entities made since `created`
+  // was k and says true, or false when that is more than kMadeMemory ago or k is of another
+  // table (`lineage`: every copy of the table, or assignment to it, draws a new one).
+  static constexpr int64_t kMadeMemory = 1024;
+  struct Lineage {
+    uint64_t v = draw();
+    Lineage() = default;
+    Lineage(const Lineage&) : v(draw()) {}
+    Lineage& operator=(const Lineage&) { return v = draw(), *this; }
+    static uint64_t draw() {
+      static std::atomic<uint64_t> next{1};
+      return next.fetch_add(1, std::memory_order_relaxed);
+    }
+  };
+  Lineage lineage;
+  bool made_since(uint64_t lineage_then, int64_t created_then, std::vector<uint32_t>& out) const;
   size_t size() const { return id.size(); }
   int add(std::string id_, int kind_, const Vec3& p, float heading, float radius);
   // Makes slot e a new entity, every field as add() sets it (a spent munition's slot, reclaimed).
   void reset(int e, std::string id_, int kind_, const Vec3& p, float heading, float radius);
   bool valid() const;  // invariant: every array has size() entries
+
+ private:
+  std::array<uint32_t, kMadeMemory> made_slot_{};  // entity number k (0-based) went to made_slot_[k % kMadeMemory]
 };
 
 struct World {
