@@ -54,22 +54,34 @@ int Procs::start(const std::vector<std::string>& args, const std::filesystem::pa
 
 int Procs::start_program(const std::string& bin, const std::vector<std::string>& args,
                          const std::filesystem::path& out, const std::vector<std::string>& env) {
+  // Everything the child needs is made before fork: between fork and exec a child of a
+  // threaded process (a test's flooding or listening thread) may only make async-signal-safe
+  // calls; a malloc there can wait forever on a lock another thread held at the fork (seen as a
+  // node that printed nothing under ASan, whose allocator is not fork-safe).
   std::vector<std::string> all{bin};
   all.insert(all.end(), args.begin(), args.end());
+  std::vector<std::string> envs;  // this process's environment, `env`'s KEY=VALUE replacing KEY
+  for (char** e = environ; *e; ++e) {
+    const std::string kv = *e;
+    const auto same_key = [&](const std::string& x) { return x.substr(0, x.find('=')) == kv.substr(0, kv.find('=')); };
+    if (std::none_of(env.begin(), env.end(), same_key)) envs.push_back(kv);
+  }
+  envs.insert(envs.end(), env.begin(), env.end());
+  std::vector<char*> argv, envp;
+  for (auto& a : all) argv.push_back(a.data());
+  for (auto& e : envs) envp.push_back(e.data());
+  argv.push_back(nullptr), envp.push_back(nullptr);
+  const std::string out_path = out.string();
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error("fork failed");
   if (pid == 0) {
-    const int fd = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int fd = ::open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd >= 0) {
       ::dup2(fd, 1);
       ::dup2(fd, 2);
       ::close(fd);
     }
-    for (const auto& e : env) ::putenv(const_cast<char*>(e.c_str()));
-    std::vector<char*> argv;
-    for (auto& a : all) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    ::execv(bin.c_str(), argv.data());
+    ::execve(bin.c_str(), argv.data(), envp.data());
     ::_exit(127);
   }
   running_.push_back(pid);
