@@ -25,6 +25,15 @@ void load(ProcLoader loader, int tag) {
   g_loaded_tag = tag;
 }
 
+void stream_to_buffer(unsigned vbo, const void* data, size_t bytes, size_t& capacity) {
+  BindBuffer(GL_ARRAY_BUFFER, vbo);
+  if (bytes > capacity) {
+    capacity = bytes > 2 * capacity ? bytes : 2 * capacity;
+    BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(capacity), nullptr, GL_STREAM_DRAW);
+  }
+  BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), data);
+}
+
 std::string error_name(unsigned err) {
   switch (err) {
     case GL_NO_ERROR: return "GL_NO_ERROR";

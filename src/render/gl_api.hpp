@@ -5,6 +5,7 @@
 #pragma once
 #include <GL/glcorearb.h>
 
+#include <cstddef>
 #include <string>
 
 // GL 1.1 entry points that Mesa's glcorearb.h declares without PFN typedefs.
@@ -103,5 +104,9 @@ void load(ProcLoader loader, int tag);
 
 // "GL_INVALID_OPERATION" etc. for messages.
 std::string error_name(unsigned err);
+
+// Binds `vbo` (GL_ARRAY_BUFFER) and writes `bytes` of `data` at its start; past `capacity`
+// (bytes, updated) the buffer is first remade at twice that, or `bytes` if more (stream draw).
+void stream_to_buffer(unsigned vbo, const void* data, size_t bytes, size_t& capacity);
 
 }  // namespace npsnet::render::gl

@@ -133,13 +133,7 @@ void ModelMeshes::draw(ObjectDrawStats& stats) {
   for (const auto& b : buckets_) staging_.insert(staging_.end(), b.begin(), b.end());
   if (staging_.empty()) return;
   gl::BindVertexArray(vao_);
-  gl::BindBuffer(GL_ARRAY_BUFFER, inst_vbo_);
-  const size_t bytes = staging_.size() * sizeof(Instance);
-  if (bytes > inst_capacity_) {
-    inst_capacity_ = std::max(bytes, inst_capacity_ * 2);
-    gl::BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(inst_capacity_), nullptr, GL_STREAM_DRAW);
-  }
-  gl::BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), staging_.data());
+  gl::stream_to_buffer(inst_vbo_, staging_.data(), staging_.size() * sizeof(Instance), inst_capacity_);
   size_t at = 0;
   const auto stride = static_cast<GLsizei>(sizeof(Instance));
   for (size_t k = 0; k < buckets_.size(); ++k) {

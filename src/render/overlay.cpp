@@ -187,12 +187,7 @@ void Overlay::end() {
   gl::Enable(GL_BLEND);
   gl::BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   const auto upload = [](unsigned vbo, size_t& cap, const void* data, size_t bytes) {
-    gl::BindBuffer(GL_ARRAY_BUFFER, vbo);
-    if (bytes > cap) {
-      cap = std::max(bytes, cap * 2);
-      gl::BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(cap), nullptr, GL_STREAM_DRAW);
-    }
-    gl::BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), data);
+    gl::stream_to_buffer(vbo, data, bytes, cap);
   };
   // quads in submission order (panels, map, text), then triangles and lines on top of the map
   if (!quads_.empty()) {
