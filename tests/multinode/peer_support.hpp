@@ -68,11 +68,11 @@ inline bool await_node(Node& n) {
   return bound;
 }
 
-// The scenario time node `n` had reached, at worst, when the wall clock read `unix_s`, from what it
-// said once it ended: its late start (whenever it said it) and how far its ticks ran behind.
-inline double node_time_at_least(const Node& n, double unix_s) {
-  return unix_s - (n.start_at + lan::start_lag_s(n.out)) - lan::worst_late_s(n.out);
-}
+// The node's scenario time at UNIX time `unix_s`, from what it said once it ended: t = 0 at
+// --start-at or as late as it said it started (node_time). node_time_at_least: the time its ticks
+// had reached at worst then, less how far they ran behind the wall clock (its paced summary).
+inline double node_time(const Node& n, double unix_s) { return unix_s - (n.start_at + lan::start_lag_s(n.out)); }
+inline double node_time_at_least(const Node& n, double unix_s) { return node_time(n, unix_s) - lan::worst_late_s(n.out); }
 
 // The peer: application 50 on site 1, same exercise. Its own echo is dropped by its session.
 inline net::SessionConfig peer_config(int port, std::uint16_t app = 50) {

@@ -66,9 +66,10 @@ TEST(FederateKinematics, ReceivedRpbFollowsItsCircle) {
   bmp.dead_reckoning.algorithm = 7;                    // RPB
   bmp.dead_reckoning.angular_velocity = {0, 0, 0.4f};  // about body z (down): turning right
   fed::sleep_until(node.start + 1.0);
-  const double sent = lan::unix_now() - node.start;
+  const double sent_unix = lan::unix_now();
   peer.send(bmp);  // one Entity State: the node dead-reckons the rest (timeout 12 s)
   ASSERT_TRUE(f.finished());
+  const double sent = fed::node_time(node, sent_unix);  // on the node's clock (it may start late)
   const auto ev = f.events();
 
   const double quarter_s = (3.14159265358979 / 2) / 0.4;
