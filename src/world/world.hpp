@@ -66,9 +66,9 @@ struct Entities {
   std::vector<uint8_t> driven;               // 1 = a player drives it (dynamics/drive.hpp), not its route
   int64_t created = 0;                       // entities ever made (add or reset): ids change when it does
   // Which slots the last kMadeMemory entities made went to, for readers that follow the ids
-  // (collision::IdRank): made_since(k, out) appends the slots of entities made since `created`
-  // was k and says true, or false when that is more than kMadeMemory ago or k is of another
-  // table (`lineage`: every copy of the table, or assignment to it, draws a new one).
+  // (collision::IdRank): made_since(l, k, out) appends the slots of the entities made since
+  // `created` was k and says true, or says false when that is more than kMadeMemory ago or l is
+  // not this table's `lineage` (every copy of the table, or assignment to it, draws a new one).
   static constexpr int64_t kMadeMemory = 1024;
   struct Lineage {
     uint64_t v = draw();
