@@ -48,6 +48,8 @@ inline SinCos sincos_deg(double deg) {
     const double r = deg * (std::numbers::pi / 180);
     return {std::sin(r), std::cos(r)};
   }
+  // Within 44 degrees q below is 0 and r is deg: the series at once (a vehicle's pitch and roll).
+  if (std::abs(deg) < 44.0) return sincos_small(deg * (std::numbers::pi / 180));
   // q: the nearest multiple of 90 degrees (or one that leaves r a hair past 45: the series holds
   // there), without libm or a division.
   const long long q = static_cast<long long>(deg * (1.0 / 90.0) + (deg < 0 ? -0.5 : 0.5));

@@ -1,5 +1,6 @@
 // Vehicle and munition dynamics, one fixed step at a time (any dt from 0.01 to 1 s).
-// Ground vehicles steer to their waypoints at cruise speed (never above their limit: Table 2 or
+// Ground vehicles steer to their waypoints (holding the course while a waypoint lies within
+// 0.01 deg of the heading) at cruise speed (never above their limit: Table 2 or
 // the scenario's override) and follow the terrain (height, pitch and roll from the terrain under
 // their footprint); ships stay on water; aircraft hold altitude. he_round flies a ballistic arc
 // and meets the terrain by marching along the heightfield; a guided kind (missile) flies at its
@@ -30,11 +31,11 @@ struct GroundImpact {
 };
 
 // heading_to_dir of each entity's stored (float) heading, kept by step from tick to tick while
-// that float keeps its bits. A vehicle on a straight leg turns its double heading by less than
-// a float step, so its stored heading stays the same float: terrain following then takes the
-// direction from here instead of a sin and cos (and so does the step of a vehicle whose heading
-// is that float). The entry is a function of the float's bits only: whatever entity a slot
-// later holds, a matching key gives the same bits as the sin and cos.
+// that float keeps its bits. A vehicle moves along its stored heading and holds its course while
+// the waypoint lies within 0.01 deg of it, so on a straight leg the heading stays the same float
+// and its direction comes from here instead of a sin and cos. The entry is a function of the
+// float's bits only: whatever entity a slot later holds, a matching key gives the same bits as
+// the sin and cos.
 struct HeadingDirs {
   std::vector<uint64_t> key;  // (1 << 32) | the float's bits; 0 = none
   std::vector<Vec2> dir;      // heading_to_dir(that float)

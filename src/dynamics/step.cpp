@@ -27,6 +27,12 @@ double turn_rate_dps(Mobility m) {
 }
 constexpr double kWaypointCaptureM = 15.0;
 constexpr double kAirMinClearanceM = 30.0;
+// A driver holds the course while the waypoint lies within this angle of the heading (0.01 deg:
+// 0.5 m off at the 3 km of a background leg, corrected as the waypoint nears): a vehicle on a
+// straight leg then needs neither the atan2 of its bearing nor a new sin and cos (vehicle
+// handling, not a thesis constant).
+constexpr double kCourseHoldDeg = 0.01;
+const double kCourseHoldTan = std::tan(kCourseHoldDeg * kPi / 180);
 
 double turn_towards(double heading, double wanted, double max_step) {
   double d = wrap360(wanted - heading);
@@ -40,7 +46,25 @@ uint64_t heading_key(double h) {
   return static_cast<double>(f) == h ? (uint64_t{1} << 32) | std::bit_cast<uint32_t>(f) : 0;
 }
 
+// The direction of heading h, a float's value: the memo's when it holds h, else its sin and cos
+// (the same bits either way). Notes it in the memo.
+Vec2 dir_of_float(double h, int e, HeadingDirs* memo) {
+  const uint64_t key = memo ? heading_key(h) : 0;
+  if (key != 0 && memo->key[e] == key) return memo->dir[e];
+  const Vec2 d = heading_to_dir(h);
+  if (memo) memo->key[e] = key, memo->dir[e] = d;
+  return d;
+}
+
+// Whether `to` lies within kCourseHoldDeg of the unit direction d (ahead of it).
+bool on_course(const Vec2& d, const Vec2& to) {
+  const double ahead = d.dot(to), off = d.x() * to.y() - d.y() * to.x();
+  return ahead > 0 && std::abs(off) <= ahead * kCourseHoldTan;
+}
+
 // flatten: the terrain lookups (Terrain::height, is_water) and terrain following inline here.
+// The vehicle moves along its stored (float) heading, the one terrain following, collision and
+// the network see.
 [[gnu::flatten]] void step_vehicle(world::World& w, int e, double dt, HeadingDirs* memo) {
   auto& ents = w.ents;
   const world::Kind& k = w.kinds[ents.kind[e]];
@@ -51,6 +75,7 @@ uint64_t heading_key(double h) {
   }
   // Steering: fleeing overrides the route; otherwise the current waypoint, if any.
   double heading = ents.heading_deg[e];
+  Vec2 d = dir_of_float(heading, e, memo);  // the direction of `heading`
   double speed = std::min<double>(ents.cruise_mps[e], ents.max_mps[e]);
   if (k.fuel_l > 0 && ents.fuel_l[e] <= 0) speed = 0;  // an empty tank stops the vehicle
   auto& route = ents.route[e];
@@ -64,11 +89,11 @@ uint64_t heading_key(double h) {
       if (ents.loop_route[e] && ents.leg[e] >= static_cast<int>(route.size())) ents.leg[e] = 0;
       if (ents.leg[e] < static_cast<int>(route.size())) to = route[ents.leg[e]] - here;
     }
-    if (to.norm() > 1e-6) heading = turn_towards(heading, dir_to_heading(to), turn_rate_dps(k.mobility) * dt);
+    if (to.norm() > 1e-6 && !on_course(d, to)) {
+      heading = static_cast<float>(turn_towards(heading, dir_to_heading(to), turn_rate_dps(k.mobility) * dt));
+      d = dir_of_float(heading, e, memo);
+    }
   }
-  // The direction of the heading: the memo's when the heading is the stored float it keeps.
-  const uint64_t d_key = memo ? heading_key(heading) : 0;
-  const Vec2 d = d_key != 0 && memo->key[e] == d_key ? memo->dir[e] : heading_to_dir(heading);
   const double d_heading = heading;  // the heading d points along
   Vec3 next = ents.pos[e] + Vec3(d.x(), d.y(), 0) * (speed * dt);
   next.x() = std::clamp(next.x(), 0.0, w.terrain.width_m());
@@ -77,13 +102,13 @@ uint64_t heading_key(double h) {
     case Mobility::Ground:
       if (w.is_water(next.x(), next.y())) {  // shore: stop and turn away
         next = ents.pos[e];
-        heading = wrap360(heading + 90);
+        heading = static_cast<float>(wrap360(heading + 90));
       }
       break;
     case Mobility::Ship:
       if (!w.is_water(next.x(), next.y())) {
         next = ents.pos[e];
-        heading = wrap360(heading + 90);
+        heading = static_cast<float>(wrap360(heading + 90));
       }
       next.z() = w.water_level_m;
       break;
@@ -95,16 +120,8 @@ uint64_t heading_key(double h) {
   ents.vel[e] = (next - ents.pos[e]) / dt;
   ents.pos[e] = next;
   ents.heading_deg[e] = static_cast<float>(heading);
-  // Terrain following needs the direction of the stored (float) heading: d when the heading is
-  // that float (no turn, or a turn to a float), else the memo's when it holds that float, else
-  // its own sin and cos.
-  if (k.mobility == Mobility::Ground) {
-    const double stored = ents.heading_deg[e];
-    const uint64_t key = memo ? heading_key(stored) : 0;
-    const Vec2 f = stored == d_heading ? d : key != 0 && memo->key[e] == key ? memo->dir[e] : heading_to_dir(stored);
-    if (memo) memo->key[e] = key, memo->dir[e] = f;
-    follow_terrain_along(w, e, f);
-  }
+  // Terrain following along the stored heading: d, unless the shore turned the vehicle away.
+  if (k.mobility == Mobility::Ground) follow_terrain_along(w, e, heading == d_heading ? d : dir_of_float(heading, e, memo));
   if (k.mobility == Mobility::Ship || k.mobility == Mobility::Air) ents.pitch_deg[e] = ents.roll_deg[e] = 0;
   burn_fuel(w, e, speed, dt);
 }

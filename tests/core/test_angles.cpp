@@ -110,7 +110,8 @@ TEST(Angles, SinCosDegAndAtan2RadAreWithinTwoAndTwoAndAHalfUlpsOfLongDouble) {
     return static_cast<double>(std::fabs(got - ref)) / (std::nextafter(r, HUGE_VAL) - r);
   };
   double worst_sc = 0, worst_at = 0;
-  const std::vector<double> edges = {0, -0.0, 45, 90, 135, 180, 270, 360, -90, 1e-300, 44.999999999999, 1e15};
+  const std::vector<double> edges = {0,   -0.0, 45, 90, 135, 180, 270, 360, -90, 1e-300, 44.999999999999, 1e15,
+                                     44, -44, 43.99999999999999, -43.99999999999999, 1e-20, -5e-324};
   for (int i = 0; i < 1000000; ++i) {
     const double d = i < static_cast<int>(edges.size()) ? edges[i] : deg(rng);
     const SinCos v = sincos_deg(d);

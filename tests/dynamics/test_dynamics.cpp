@@ -60,6 +60,26 @@ TEST(Vehicles, SteersToWaypointsForAnyDt) {
   }
 }
 
+TEST(Vehicles, HoldTheirCourseWithinAHundredthOfADegreeAndCorrectBeyondIt) {
+  // Heading 90 (east), the waypoint 1.8 km on (the map is 2 km), off the course by 0.005 and by
+  // 0.02 degrees.
+  for (double off_deg : {0.005, 0.02}) {
+    auto w = test::flat_world();
+    const int e = test::add_vehicle(w, "t", "hmmwv", 100, 500, 90, 10);
+    const Vec2 wp(1900, 500 + 1800 * std::tan(deg2rad(off_deg)));
+    w.ents.route[e] = {wp};
+    std::vector<dynamics::GroundImpact> imp;
+    dynamics::HeadingDirs memo;
+    dynamics::step(w, 1.0 / 60, imp, nullptr, &memo);
+    if (off_deg < 0.01) EXPECT_EQ(w.ents.heading_deg[e], 90.0f) << "within the band the course is held";
+    else EXPECT_LT(w.ents.heading_deg[e], 90.0f) << "beyond it the vehicle turns to the waypoint";
+    // Either way the vehicle reaches its waypoint: the band's drift is corrected as it nears.
+    for (int i = 0; i < 60 * 200 && w.ents.leg[e] == 0; ++i) dynamics::step(w, 1.0 / 60, imp, nullptr, &memo);
+    EXPECT_EQ(w.ents.leg[e], 1) << off_deg;
+    EXPECT_LT((Vec2(w.ents.pos[e].x(), w.ents.pos[e].y()) - wp).norm(), 15.5) << off_deg;
+  }
+}
+
 TEST(Munitions, BallisticRoundMeetsTheTerrainAtTheTarget) {
   auto w = test::flat_world();
   const int s = test::add_vehicle(w, "s", "m1a1", 200, 1000, 90, 0);
