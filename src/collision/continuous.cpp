@@ -239,15 +239,16 @@ namespace {
 // Items per chunk below which a stage stays on one thread (a chunk claimed by a worker that is
 // spinning, core/jobs.hpp, costs well under a microsecond; one item here, 0.3-1 us).
 constexpr size_t kEntityGrain = 128, kPairGrain = 256, kPendingGrain = 4;
+constexpr int kEntityChunksPerThread = 4;  // the long entity pass: claimed as threads come free
 // Runs fn(chunk, begin, end) over [0, count), on the pool when there is one.
 template <class F>
-int chunked(core::Jobs* jobs, size_t count, size_t grain, F&& fn) {
+int chunked(core::Jobs* jobs, size_t count, size_t grain, F&& fn, int per_thread = 1) {
   if (!jobs) {
     fn(0, size_t{0}, count);
     return 1;
   }
-  const int k = jobs->chunks(count, grain);
-  jobs->for_chunks(count, grain, fn);
+  const int k = jobs->chunks(count, grain, per_thread);
+  jobs->for_chunks(count, grain, fn, per_thread);
   return k;
 }
 }  // namespace
@@ -385,7 +386,7 @@ void Detector::detect_continuous(const world::World& w) {
   // its fixed-object tests into its range's lane (check_finite first: the pool rethrows the
   // lowest range's error, so the first bad entity in index order is named, as on one thread).
   // (flatten: check_finite, centre_end and fixed_contacts with its grid query inline into this loop.)
-  if (jobs_) lane(jobs_->threads() - 1);
+  if (jobs_) lane(std::max(jobs_->threads(), jobs_->chunks(m, kEntityGrain, kEntityChunksPerThread)) - 1);
   else lane(0);
   merge_lanes(chunked(jobs_, m, kEntityGrain, [&](int c, size_t i0, size_t i1) __attribute__((flatten)) {
     for (size_t i = i0; i < i1; ++i) {
@@ -416,7 +417,7 @@ void Detector::detect_continuous(const world::World& w) {
       boxes_[i] = swept_box(c0_[i], c1_[i], r_bound_[i]);
       fixed_contacts(w, i, lanes_[c]);
     }
-  }));
+  }, kEntityChunksPerThread));
 
   // Moving pairs: hashed grid on the swept boxes, then the analytic sweep, then the tiers.
   moving_.pairs(boxes_, pairs_, jobs_);

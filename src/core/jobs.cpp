@@ -21,7 +21,7 @@ int Jobs::default_threads() {
   return std::clamp(static_cast<int>(h), 1, kDefaultCap);
 }
 
-Jobs::Jobs(int threads) : threads_(std::clamp(threads, 1, kMaxThreads)), errors_(threads_) {
+Jobs::Jobs(int threads) : threads_(std::clamp(threads, 1, kMaxThreads)), errors_(static_cast<size_t>(threads_) * kMaxPerThread) {
   workers_.reserve(threads_ - 1);
   for (int w = 1; w < threads_; ++w) workers_.emplace_back([this] { work(); });
 }

@@ -4,13 +4,14 @@
 // Contract:
 //  * Jobs(n): n threads in all, the calling thread included (n - 1 workers are started; n = 1
 //    starts none and runs everything on the caller, the single-threaded path).
-//  * for_chunks(count, grain, fn): splits [0, count) into k = chunks(count, grain) contiguous
-//    ranges, chunk c = [count * c / k, count * (c + 1) / k), and calls fn(c, begin, end) once
+//  * for_chunks(count, grain, fn[, per_thread]): splits [0, count) into k = chunks(count, grain,
+//    per_thread) contiguous ranges, chunk c = [count * c / k, count * (c + 1) / k) (k at most
+//    kMaxChunks), and calls fn(c, begin, end) once
 //    for each, returning when all are done. Chunks are claimed, not assigned: the caller starts
 //    on them at once and a worker takes the next unclaimed one when it arrives, so a stage never
 //    waits for a worker to wake (a short stage may run wholly on the caller). Which thread runs
 //    a chunk changes nothing: fn's outputs are keyed by the chunk index c.
-//    The split depends only on count, grain and threads(): a stage whose chunks write only their
+//    The split depends only on count, grain, per_thread and threads(): a stage whose chunks write only their
 //    own outputs (per-chunk buffers, or the slots of their own range), merged afterwards in
 //    chunk order, gives the same bytes as one thread walking [0, count) in order.
 //  * An exception thrown by fn is rethrown on the caller once every chunk has ended (the one of
@@ -21,6 +22,7 @@
 //    then sleeps on a condition variable. wake() lets workers start spinning ahead of a burst of
 //    stages (the start of a tick).
 #pragma once
+#include <algorithm>
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
@@ -38,6 +40,7 @@ class Jobs {
   // The default thread count: std::thread::hardware_concurrency(), at least 1, at most kDefaultCap.
   static int default_threads();
   static constexpr int kDefaultCap = 8, kMaxThreads = 64;
+  static constexpr int kMaxPerThread = 8, kMaxChunks = kMaxThreads * kMaxPerThread;  // chunks(): per_thread
 
   explicit Jobs(int threads = 1);  // threads clamped to [1, kMaxThreads]
   ~Jobs();
@@ -48,18 +51,21 @@ class Jobs {
   // Caps every stage's grain (0 = no cap): tests set 1 so that every stage splits as finely as
   // the thread count allows, whatever its size.
   void set_max_grain(size_t g) { max_grain_ = g; }
-  // How many chunks for_chunks splits `count` items into: min(threads, count / grain), >= 1.
-  int chunks(size_t count, size_t grain) const {
+  // How many chunks for_chunks splits `count` items into: min(threads * per_thread, count /
+  // grain), >= 1. per_thread (1 to kMaxPerThread) > 1 for the long stages of many alike items:
+  // a thread that finishes early (or the caller, while a worker is late) claims more of them
+  // instead of waiting at the stage's end.
+  int chunks(size_t count, size_t grain, int per_thread = 1) const {
     size_t g = grain ? grain : 1;
     if (max_grain_ && g > max_grain_) g = max_grain_;
-    const size_t k = count / g;
-    return k < 1 ? 1 : k > static_cast<size_t>(threads_) ? threads_ : static_cast<int>(k);
+    const size_t k = count / g, most = static_cast<size_t>(threads_) * std::clamp(per_thread, 1, kMaxPerThread);
+    return k < 1 ? 1 : k > most ? static_cast<int>(most) : static_cast<int>(k);
   }
   static size_t chunk_begin(size_t count, int c, int k) { return count * static_cast<size_t>(c) / static_cast<size_t>(k); }
 
   template <class F>
-  void for_chunks(size_t count, size_t grain, F&& fn) {
-    const int k = chunks(count, grain);
+  void for_chunks(size_t count, size_t grain, F&& fn, int per_thread = 1) {
+    const int k = chunks(count, grain, per_thread);
     if (k == 1) {
       fn(0, size_t{0}, count);
       return;

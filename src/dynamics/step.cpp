@@ -230,7 +230,7 @@ void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::
   auto moves = [&](size_t e) { return ents.active[e] && ents.local[e] && !ents.driven[e]; };
   // Each range also notes the span of its munitions, so that the munitions' pass (on this thread,
   // in index order) walks that span only, not every entity again.
-  std::array<std::pair<size_t, size_t>, core::Jobs::kMaxThreads> span;
+  std::array<std::pair<size_t, size_t>, core::Jobs::kMaxChunks> span;
   span.fill({n, 0});
   // Vehicles are stored in no spatial order: each one's terrain posts (world/terrain.hpp) and its
   // current waypoint are asked of the cache kPrefetchAhead vehicles before it is stepped, so that
@@ -251,7 +251,8 @@ void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::
     }
   };
   constexpr size_t kGrain = 128;  // vehicles per chunk below which one thread does it all
-  if (jobs) jobs->for_chunks(n, kGrain, vehicles);
+  constexpr int kChunksPerThread = 4;  // claimed as threads come free (core/jobs.hpp)
+  if (jobs) jobs->for_chunks(n, kGrain, vehicles, kChunksPerThread);
   else vehicles(0, 0, n);
   size_t m0 = n, m1 = 0;
   for (const auto& [lo, hi] : span) m0 = std::min(m0, lo), m1 = std::max(m1, hi);

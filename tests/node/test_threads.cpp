@@ -128,6 +128,31 @@ TEST(Threads, JobsSplitIntoFixedRangesAndRethrowTheFirstError) {
     EXPECT_STREQ(e.what(), "bad 500");
   }
   EXPECT_EQ(ran, std::vector<int>({1, 1, 1}));
+  // Several chunks a thread: up to threads * per_thread (capped at kMaxPerThread), the same fixed
+  // ranges whoever claims them, every item once, the lowest chunk's error first.
+  EXPECT_EQ(jobs.chunks(1000, 1, 4), 12);
+  EXPECT_EQ(jobs.chunks(1000, 100, 4), 10);
+  EXPECT_EQ(jobs.chunks(1000, 1, 1000), 3 * core::Jobs::kMaxPerThread);
+  std::vector<int> seen(1000, 0);
+  std::vector<int> owner4(1000, -1);
+  jobs.for_chunks(owner4.size(), 1, [&](int c, size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) owner4[i] = c, ++seen[i];
+  }, 4);
+  for (size_t c = 0; c < 12; ++c)  // chunk c = [1000 c / 12, 1000 (c + 1) / 12)
+    for (size_t i = 1000 * c / 12; i < 1000 * (c + 1) / 12; ++i) EXPECT_EQ(owner4[i], static_cast<int>(c)) << i;
+  EXPECT_EQ(seen, std::vector<int>(1000, 1));
+  std::vector<int> ran4(12, 0);
+  try {
+    jobs.for_chunks(1000, 1, [&](int c, size_t b, size_t e) {
+      ran4[c] = 1;
+      for (size_t i = b; i < e; ++i)
+        if (i == 950 || i == 700) throw std::runtime_error("bad " + std::to_string(i));
+    }, 4);
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "bad 700");
+  }
+  EXPECT_EQ(ran4, std::vector<int>(12, 1));
   // Reusable after an error, and a pool of one runs on the caller.
   int sum = 0;
   core::Jobs single(1);
