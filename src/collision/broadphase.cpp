@@ -2,14 +2,26 @@
 #include "collision/broadphase.hpp"
 
 #include <algorithm>
+#include <cmath>
+
+#include "core/prefetch.hpp"
 
 namespace npsnet::collision {
 
 namespace {
 // floor(v) for |v| < 2^30 without a libm call.
 inline int32_t ifloor(double v) { return static_cast<int32_t>(static_cast<int64_t>(v + 1073741824.0) - 1073741824); }
+// A box's larger extent in x and y.
+inline double extent(const Box& b) { return std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]); }
 inline uint32_t hash_cell(int32_t x, int32_t y, uint32_t mask) {
   return (static_cast<uint32_t>(x) * 73856093u ^ static_cast<uint32_t>(y) * 19349663u) & mask;
+}
+// fn(range, begin, end) over [0, count) in k = jobs->chunks(count, grain) ranges (k > 1: on the
+// pool), else once over the whole.
+template <class F>
+void in_ranges(core::Jobs* jobs, int k, size_t count, size_t grain, F&& fn) {
+  if (k > 1) jobs->for_chunks(count, grain, fn);
+  else fn(0, size_t{0}, count);
 }
 }  // namespace
 
@@ -20,16 +32,30 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
   large_.clear();
   if (n < 2) return;
   // Cell: 3x the largest extent among ordinary boxes (extent <= 4x the mean): 1.78 cells a
-  // box on average, few boxes a cell.
-  double mean = 0;
-  for (const Box& b : boxes) mean += std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]);
-  mean /= n;
-  const double cap = 4 * mean;
+  // box on average, few boxes a cell. Both passes per range of boxes (on the pool when there is
+  // one): the mean from a sum in whole 1/256 m (integers: the same sum in any split), the
+  // largest extent from each range's largest.
+  constexpr size_t kBoxGrain = 256;  // (a chunk's count array is nb entries: nb ~ n)
+  const int kc = jobs ? jobs->chunks(n, kBoxGrain) : 1;
+  if (count_.size() < static_cast<size_t>(kc)) count_.resize(kc), large_chunk_.resize(kc), part_.resize(kc);
+  auto on_ranges = [&](auto&& fn) { in_ranges(jobs, kc, n, kBoxGrain, fn); };
+  on_ranges([&](int c, size_t b0, size_t b1) {
+    int64_t sum = 0;
+    for (size_t i = b0; i < b1; ++i)
+      if (const double e = extent(boxes[i]); e > 0) sum += std::llround(std::min(e, 1e9) * 256);  // (NaN: 0)
+    part_[c].sum = sum;
+  });
+  int64_t sum = 0;
+  for (int c = 0; c < kc; ++c) sum += part_[c].sum;
+  const double cap = 4 * (static_cast<double>(sum) / 256 / n);
+  on_ranges([&](int c, size_t b0, size_t b1) {
+    double ext = 0;
+    for (size_t i = b0; i < b1; ++i)
+      if (const double e = extent(boxes[i]); e <= cap) ext = std::max(ext, e);
+    part_[c].ext = ext;
+  });
   double ext = 0;
-  for (const Box& b : boxes) {
-    const double e = std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]);
-    if (e <= cap) ext = std::max(ext, e);
-  }
+  for (int c = 0; c < kc; ++c) ext = std::max(ext, part_[c].ext);
   cell_ = std::max(3 * ext, 1e-3);
   const double inv = 1.0 / cell_;
   uint32_t nb = 1;
@@ -37,18 +63,15 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
   const uint32_t mask = nb - 1;
   is_large_.assign(n, 0);
   bucket_.resize(4 * static_cast<size_t>(n));  // at most 2 x 2 cells a box: box i's from 4 i
-  // Count, per range of boxes (on the pool when there is one): each ordinary box in the (at most
-  // 2 x 2) cells it overlaps, into the range's own counts per bucket.
-  constexpr size_t kBoxGrain = 256;  // (a chunk's count array is nb entries: nb ~ n)
-  const int kc = jobs ? jobs->chunks(n, kBoxGrain) : 1;
-  if (count_.size() < static_cast<size_t>(kc)) count_.resize(kc), large_chunk_.resize(kc);
+  // Count, per range of boxes: each ordinary box in the (at most 2 x 2) cells it overlaps, into
+  // the range's own counts per bucket.
   auto count = [&](int c, size_t b0, size_t b1) {
     std::vector<uint32_t>& cnt = count_[c];
     cnt.assign(nb, 0);
     large_chunk_[c].clear();
     for (size_t i = b0; i < b1; ++i) {
       const Box& b = boxes[i];
-      if (std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]) > cap) {
+      if (extent(b) > cap) {
         large_chunk_[c].push_back(static_cast<uint32_t>(i));
         is_large_[i] = 1;
         continue;
@@ -64,27 +87,48 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
         }
     }
   };
-  if (kc > 1) jobs->for_chunks(n, kBoxGrain, count);
-  else count(0, 0, n);
+  on_ranges(count);
   // Offsets, bucket by bucket and within a bucket range by range: each bucket lists its boxes in
   // box order, as one pass over all boxes would. count_[c][h] becomes range c's next slot in h.
+  // On the pool: each range of buckets sums its counts, the sums are scanned in range order,
+  // then each range writes its offsets from its start (integers: the same for any split).
+  constexpr size_t kScanGrain = 4096;
+  const int ks = jobs ? jobs->chunks(nb, kScanGrain) : 1;
+  if (scan_.size() < static_cast<size_t>(ks) + 1) scan_.resize(ks + 1);
   start_.resize(nb + 1);
-  uint32_t next = 0;
-  for (uint32_t h = 0; h < nb; ++h) {
-    start_[h] = next;
-    for (int c = 0; c < kc; ++c) {
-      const uint32_t k = count_[c][h];
-      count_[c][h] = next;
-      next += k;
+  auto bucket_ranges = [&](auto&& fn) { in_ranges(jobs, ks, nb, kScanGrain, fn); };
+  bucket_ranges([&](int r, size_t h0, size_t h1) {
+    uint32_t total = 0;
+    for (size_t h = h0; h < h1; ++h)
+      for (int c = 0; c < kc; ++c) total += count_[c][h];
+    scan_[r + 1] = total;
+  });
+  scan_[0] = 0;
+  for (int r = 0; r < ks; ++r) scan_[r + 1] += scan_[r];
+  bucket_ranges([&](int r, size_t h0, size_t h1) {
+    uint32_t next = scan_[r];
+    for (size_t h = h0; h < h1; ++h) {
+      start_[h] = next;
+      for (int c = 0; c < kc; ++c) {
+        const uint32_t k = count_[c][h];
+        count_[c][h] = next;
+        next += k;
+      }
     }
-  }
+  });
+  const uint32_t next = scan_[ks];
   start_[nb] = next;
   entries_.resize(next);
   for (int c = 0; c < kc; ++c) large_.insert(large_.end(), large_chunk_[c].begin(), large_chunk_[c].end());
   // Fill, per the same ranges: each writes only its own slots.
+  constexpr size_t kFillAhead = 8;
   auto fill = [&](int c, size_t b0, size_t b1) {
     std::vector<uint32_t>& slot = count_[c];
     for (size_t i = b0; i < b1; ++i) {
+      // The boxes lie in no spatial order: each one's first slot is asked of the cache
+      // kFillAhead boxes before it is written (a hint: no result changes).
+      if (i + kFillAhead < b1 && !is_large_[i + kFillAhead])
+        core::prefetch(entries_.data() + slot[bucket_[4 * (i + kFillAhead)]]);
       if (is_large_[i]) continue;
       const Box& b = boxes[i];
       const int32_t i0 = ifloor(b.lo[0] * inv), i1 = ifloor(b.hi[0] * inv);
@@ -95,11 +139,10 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
           entries_[slot[*bucket++]++] = Entry{b.lo[0], b.lo[1], b.hi[0], b.hi[1], x, y, static_cast<uint32_t>(i)};
     }
   };
-  if (kc > 1) jobs->for_chunks(n, kBoxGrain, fill);
-  else fill(0, 0, n);
+  on_ranges(fill);
   // Pairs inside each bucket: same cell, reported in the first cell the two boxes share.
   // Ranges of buckets, each into its own buffer (chunk_out_), concatenated in range order.
-  constexpr size_t kBucketGrain = 256;
+  constexpr size_t kBucketGrain = 256, kLargeGrain = 4096;
   const int k = jobs ? jobs->chunks(nb, kBucketGrain) : 1;
   if (chunk_out_.size() < static_cast<size_t>(k)) chunk_out_.resize(k);
   auto range = [&](int c, size_t h0, size_t h1) {
@@ -135,12 +178,22 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
     jobs->for_chunks(nb, kBucketGrain, range);
     for (int c = 0; c < k; ++c) out.insert(out.end(), chunk_out_[c].begin(), chunk_out_[c].end());
   }
-  // Large boxes against every box (each pair once).
+  // Large boxes against every box (each pair once), per range of boxes into the range's buffer,
+  // concatenated in range order: box order, as on one thread.
+  const int kl = jobs ? jobs->chunks(n, kLargeGrain) : 1;
+  if (chunk_out_.size() < static_cast<size_t>(kl)) chunk_out_.resize(kl);
   for (uint32_t l : large_) {
-    for (uint32_t j = 0; j < n; ++j) {
-      if (j == l || (is_large_[j] && j < l)) continue;  // large-large pairs once
-      if (overlap(boxes[l], boxes[j])) out.emplace_back(std::min(l, j), std::max(l, j));
-    }
+    auto against = [&](int c, size_t j0, size_t j1) {
+      auto& o = kl == 1 ? out : chunk_out_[c];
+      if (kl > 1) o.clear();
+      for (uint32_t j = static_cast<uint32_t>(j0); j < j1; ++j) {
+        if (j == l || (is_large_[j] && j < l)) continue;  // large-large pairs once
+        if (overlap(boxes[l], boxes[j])) o.emplace_back(std::min(l, j), std::max(l, j));
+      }
+    };
+    in_ranges(jobs, kl, n, kLargeGrain, against);
+    if (kl > 1)
+      for (int c = 0; c < kl; ++c) out.insert(out.end(), chunk_out_[c].begin(), chunk_out_[c].end());
   }
 }
 

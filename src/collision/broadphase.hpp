@@ -6,7 +6,8 @@
 //    contiguous array; then every bucket's entries are tested pairwise, a pair reported only in
 //    the first cell the two boxes share (and only between entries of the same cell when two
 //    cells share a bucket). Rebuilt every call into reused buffers (no allocation once warm).
-//    Given a core::Jobs, the listing is built per range of boxes too (counts per range, offsets
+//    Given a core::Jobs, the listing is built per range of boxes too (the mean extent from an
+//    integer sum, counts per range, offsets per range of buckets from a scan of their sums,
 //    bucket by bucket then range by range, each range filling its own slots): the same array.
 //    Linear in N for bounded density, also where bodies crowd (the cell shrinks to the bodies).
 //  Fixed objects are the world's one grid (world/fixed_grid.hpp), not indexed again here.
@@ -65,6 +66,12 @@ class MovingGrid {
   std::vector<uint32_t> large_;
   std::vector<uint8_t> is_large_;
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> chunk_out_;  // per range of buckets
+  struct Part {
+    int64_t sum = 0;  // extents in 1/256 m
+    double ext = 0;   // the largest ordinary extent
+  };
+  std::vector<Part> part_;      // per range of boxes
+  std::vector<uint32_t> scan_;  // per range of buckets: its first slot (the offsets' scan)
 };
 
 void brute_pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint32_t, uint32_t>>& out);

@@ -28,6 +28,7 @@ TEST(ParallelBroadphase, SamePairsInTheSameOrderOnOneAndSeveralThreads) {
       jobs.set_max_grain(1);
       many.pairs(boxes, b, &jobs);
       EXPECT_EQ(a, b) << n << " boxes, " << threads << " threads";
+      EXPECT_EQ(one.cell_m(), many.cell_m()) << "the cell from the mean and largest extents, any split";
     }
     collision::brute_pairs(boxes, brute);
     std::sort(a.begin(), a.end());
