@@ -239,10 +239,12 @@ namespace {
 // Items per chunk below which a stage stays on one thread (a chunk claimed by a worker that is
 // spinning, core/jobs.hpp, costs well under a microsecond; one item here, 0.3-1 us).
 constexpr size_t kEntityGrain = 128, kPairGrain = 256, kPendingGrain = 4;
-constexpr int kEntityChunksPerThread = 4;  // the long entity pass: claimed as threads come free
+// Ranges a thread (core/jobs.hpp), claimed as threads come free: the long entity pass, and the
+// pairs whose costs differ most (a pending pair's narrow phase: a sphere sweep or a mesh).
+constexpr int kEntityChunksPerThread = 4, kPairChunksPerThread = 4, kPendingChunksPerThread = 8;
 // Runs fn(chunk, begin, end) over [0, count), on the pool when there is one.
 template <class F>
-int chunked(core::Jobs* jobs, size_t count, size_t grain, F&& fn, int per_thread = 1) {
+int chunked(core::Jobs* jobs, size_t count, size_t grain, int per_thread, F&& fn) {
   if (!jobs) {
     fn(0, size_t{0}, count);
     return 1;
@@ -386,9 +388,12 @@ void Detector::detect_continuous(const world::World& w) {
   // its fixed-object tests into its range's lane (check_finite first: the pool rethrows the
   // lowest range's error, so the first bad entity in index order is named, as on one thread).
   // (flatten: check_finite, centre_end and fixed_contacts with its grid query inline into this loop.)
-  if (jobs_) lane(std::max(jobs_->threads(), jobs_->chunks(m, kEntityGrain, kEntityChunksPerThread)) - 1);
-  else lane(0);
-  merge_lanes(chunked(jobs_, m, kEntityGrain, [&](int c, size_t i0, size_t i1) __attribute__((flatten)) {
+  // fn(chunk, begin, end) over [0, count) in ranges, each into lane `chunk`, merged in order.
+  auto in_lanes = [&](size_t count, size_t grain, int per_thread, auto&& fn) {
+    lane(jobs_ ? std::max(jobs_->threads(), jobs_->chunks(count, grain, per_thread)) - 1 : 0);
+    merge_lanes(chunked(jobs_, count, grain, per_thread, fn));
+  };
+  in_lanes(m, kEntityGrain, kEntityChunksPerThread, [&](int c, size_t i0, size_t i1) __attribute__((flatten)) {
     for (size_t i = i0; i < i1; ++i) {
       const int e = static_cast<int>(order_[i]);
       check_finite(ents, e);
@@ -417,22 +422,22 @@ void Detector::detect_continuous(const world::World& w) {
       boxes_[i] = swept_box(c0_[i], c1_[i], r_bound_[i]);
       fixed_contacts(w, i, lanes_[c]);
     }
-  }, kEntityChunksPerThread));
+  });
 
   // Moving pairs: hashed grid on the swept boxes, then the analytic sweep, then the tiers.
   moving_.pairs(boxes_, pairs_, jobs_);
-  merge_lanes(chunked(jobs_, pairs_.size(), kPairGrain, [&](int c, size_t p0, size_t p1) {
+  in_lanes(pairs_.size(), kPairGrain, kPairChunksPerThread, [&](int c, size_t p0, size_t p1) {
     for (size_t p = p0; p < p1; ++p) pair_contact(w, p, lanes_[c]);
-  }));
+  });
 
   // Auto tier: the pairs that need a narrow phase get their tier from the scene and the budget
   // (scene_tiers.cpp), then are decided.
   choices_.clear();
   if (!pending_.empty()) {
     allocate_tiers(w);
-    merge_lanes(chunked(jobs_, pending_.size(), kPendingGrain, [&](int c, size_t p0, size_t p1) {
+    in_lanes(pending_.size(), kPendingGrain, kPendingChunksPerThread, [&](int c, size_t p0, size_t p1) {
       for (size_t p = p0; p < p1; ++p) decide_pending(w, p, lanes_[c]);
-    }));
+    });
     pending_.clear();
   }
 
