@@ -5,15 +5,15 @@
 //  * Jobs(n): n threads in all, the calling thread included (n - 1 workers are started; n = 1
 //    starts none and runs everything on the caller, the single-threaded path).
 //  * for_chunks(count, grain, fn[, per_thread]): splits [0, count) into k = chunks(count, grain,
-//    per_thread) contiguous ranges, chunk c = [count * c / k, count * (c + 1) / k) (k at most
-//    kMaxChunks), and calls fn(c, begin, end) once
-//    for each, returning when all are done. Chunks are claimed, not assigned: the caller starts
-//    on them at once and a worker takes the next unclaimed one when it arrives, so a stage never
-//    waits for a worker to wake (a short stage may run wholly on the caller). Which thread runs
-//    a chunk changes nothing: fn's outputs are keyed by the chunk index c.
-//    The split depends only on count, grain, per_thread and threads(): a stage whose chunks write only their
-//    own outputs (per-chunk buffers, or the slots of their own range), merged afterwards in
-//    chunk order, gives the same bytes as one thread walking [0, count) in order.
+//    per_thread) contiguous ranges (k at most kMaxChunks), chunk c = [count * c / k, count *
+//    (c + 1) / k), and calls fn(c, begin, end) once for each, returning when all are done.
+//    Chunks are claimed, not assigned: the caller starts on them at once and a worker takes the
+//    next unclaimed one when it arrives, so a stage never waits for a worker to wake (a short
+//    stage may run wholly on the caller). Which thread runs a chunk changes nothing: fn's
+//    outputs are keyed by the chunk index c. The split depends only on count, grain, per_thread
+//    and threads(): a stage whose chunks write only their own outputs (per-chunk buffers, or the
+//    slots of their own range), merged afterwards in chunk order, gives the same bytes as one
+//    thread walking [0, count) in order.
 //  * An exception thrown by fn is rethrown on the caller once every chunk has ended (the one of
 //    the lowest chunk when several threw), so an error names the first bad item in index order.
 //  * Not reentrant: for_chunks is called from one thread (the tick's), never from inside fn.
