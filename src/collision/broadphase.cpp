@@ -16,13 +16,6 @@ inline double extent(const Box& b) { return std::max(b.hi[0] - b.lo[0], b.hi[1] 
 inline uint32_t hash_cell(int32_t x, int32_t y, uint32_t mask) {
   return (static_cast<uint32_t>(x) * 73856093u ^ static_cast<uint32_t>(y) * 19349663u) & mask;
 }
-// fn(range, begin, end) over [0, count) in k = jobs->chunks(count, grain) ranges (k > 1: on the
-// pool), else once over the whole.
-template <class F>
-void in_ranges(core::Jobs* jobs, int k, size_t count, size_t grain, F&& fn) {
-  if (k > 1) jobs->for_chunks(count, grain, fn);
-  else fn(0, size_t{0}, count);
-}
 }  // namespace
 
 void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint32_t, uint32_t>>& out,
@@ -38,7 +31,7 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
   constexpr size_t kBoxGrain = 256;  // (a chunk's count array is nb entries: nb ~ n)
   const int kc = jobs ? jobs->chunks(n, kBoxGrain) : 1;
   if (count_.size() < static_cast<size_t>(kc)) count_.resize(kc), large_chunk_.resize(kc), part_.resize(kc);
-  auto on_ranges = [&](auto&& fn) { in_ranges(jobs, kc, n, kBoxGrain, fn); };
+  auto on_ranges = [&](auto&& fn) { core::run_chunks(jobs, n, kBoxGrain, fn); };
   on_ranges([&](int c, size_t b0, size_t b1) {
     int64_t sum = 0;
     for (size_t i = b0; i < b1; ++i)
@@ -96,7 +89,7 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
   const int ks = jobs ? jobs->chunks(nb, kScanGrain) : 1;
   if (scan_.size() < static_cast<size_t>(ks) + 1) scan_.resize(ks + 1);
   start_.resize(nb + 1);
-  auto bucket_ranges = [&](auto&& fn) { in_ranges(jobs, ks, nb, kScanGrain, fn); };
+  auto bucket_ranges = [&](auto&& fn) { core::run_chunks(jobs, nb, kScanGrain, fn); };
   bucket_ranges([&](int r, size_t h0, size_t h1) {
     uint32_t total = 0;
     for (size_t h = h0; h < h1; ++h)
@@ -191,7 +184,7 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
         if (overlap(boxes[l], boxes[j])) o.emplace_back(std::min(l, j), std::max(l, j));
       }
     };
-    in_ranges(jobs, kl, n, kLargeGrain, against);
+    core::run_chunks(jobs, n, kLargeGrain, against);
     if (kl > 1)
       for (int c = 0; c < kl; ++c) out.insert(out.end(), chunk_out_[c].begin(), chunk_out_[c].end());
   }

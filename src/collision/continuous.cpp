@@ -242,17 +242,6 @@ constexpr size_t kEntityGrain = 128, kPairGrain = 256, kPendingGrain = 4;
 // Ranges a thread (core/jobs.hpp), claimed as threads come free: the long entity pass, and the
 // pairs whose costs differ most (a pending pair's narrow phase: a sphere sweep or a mesh).
 constexpr int kEntityChunksPerThread = 4, kPairChunksPerThread = 4, kPendingChunksPerThread = 8;
-// Runs fn(chunk, begin, end) over [0, count), on the pool when there is one.
-template <class F>
-int chunked(core::Jobs* jobs, size_t count, size_t grain, int per_thread, F&& fn) {
-  if (!jobs) {
-    fn(0, size_t{0}, count);
-    return 1;
-  }
-  const int k = jobs->chunks(count, grain, per_thread);
-  jobs->for_chunks(count, grain, fn, per_thread);
-  return k;
-}
 }  // namespace
 
 void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
@@ -391,7 +380,7 @@ void Detector::detect_continuous(const world::World& w) {
   // fn(chunk, begin, end) over [0, count) in ranges, each into lane `chunk`, merged in order.
   auto in_lanes = [&](size_t count, size_t grain, int per_thread, auto&& fn) {
     lane(jobs_ ? std::max(jobs_->threads(), jobs_->chunks(count, grain, per_thread)) - 1 : 0);
-    merge_lanes(chunked(jobs_, count, grain, per_thread, fn));
+    merge_lanes(core::run_chunks(jobs_, count, grain, fn, per_thread));
   };
   in_lanes(m, kEntityGrain, kEntityChunksPerThread, [&](int c, size_t i0, size_t i1) __attribute__((flatten)) {
     for (size_t i = i0; i < i1; ++i) {

@@ -113,4 +113,17 @@ class Jobs {
   std::vector<std::exception_ptr> errors_;  // per chunk
 };
 
+// fn(chunk, begin, end) over [0, count): on `jobs` in its chunks(count, grain, per_thread)
+// ranges, or once on the calling thread when there is no pool. Returns how many ranges ran.
+template <class F>
+int run_chunks(Jobs* jobs, size_t count, size_t grain, F&& fn, int per_thread = 1) {
+  if (!jobs) {
+    fn(0, size_t{0}, count);
+    return 1;
+  }
+  const int k = jobs->chunks(count, grain, per_thread);
+  jobs->for_chunks(count, grain, fn, per_thread);
+  return k;
+}
+
 }  // namespace npsnet::core

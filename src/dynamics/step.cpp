@@ -252,8 +252,7 @@ void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::
   };
   constexpr size_t kGrain = 128;  // vehicles per chunk below which one thread does it all
   constexpr int kChunksPerThread = 4;  // claimed as threads come free (core/jobs.hpp)
-  if (jobs) jobs->for_chunks(n, kGrain, vehicles, kChunksPerThread);
-  else vehicles(0, 0, n);
+  core::run_chunks(jobs, n, kGrain, vehicles, kChunksPerThread);
   size_t m0 = n, m1 = 0;
   for (const auto& [lo, hi] : span) m0 = std::min(m0, lo), m1 = std::max(m1, hi);
   for (size_t e = m0; e < m1; ++e)

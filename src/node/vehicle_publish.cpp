@@ -80,8 +80,7 @@ void NetBridge::publish_vehicles() {
       skip_[i] = quiet && !repeat && !changed;
     }
   };
-  if (core::Jobs* jobs = sim_.jobs()) jobs->for_chunks(n, 128, local, 4);  // 4 a thread: claimed as threads come free
-  else local(0, 0, n);
+  core::run_chunks(sim_.jobs(), n, 128, local, 4);  // 4 a thread: claimed as threads come free
   // Round robin from where the last tick's cap stopped, so no vehicle waits more than a few ticks;
   // removed vehicles and those the exact test would pass over (skip_) are not looked at.
   order_.clear();

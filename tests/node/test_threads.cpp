@@ -153,6 +153,11 @@ TEST(Threads, JobsSplitIntoFixedRangesAndRethrowTheFirstError) {
     EXPECT_STREQ(e.what(), "bad 700");
   }
   EXPECT_EQ(ran4, std::vector<int>(12, 1));
+  // run_chunks: the pool's ranges, or one call on the caller without a pool.
+  int calls = 0;
+  EXPECT_EQ(core::run_chunks(&jobs, 1000, 1, [&](int, size_t, size_t) {}, 4), 12);
+  EXPECT_EQ(core::run_chunks(nullptr, 1000, 1, [&](int c, size_t b, size_t e) { calls += 1 + c + static_cast<int>(b) + (e == 1000 ? 0 : 99); }, 4), 1);
+  EXPECT_EQ(calls, 1);
   // Reusable after an error, and a pool of one runs on the caller.
   int sum = 0;
   core::Jobs single(1);
