@@ -66,7 +66,6 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
   accel_.assign(own_.size(), Vec3::Zero());
   yaw_rate_.assign(own_.size(), 0.f);
   anchors_.assign(own_.size(), DrAnchor{});
-  skip_.assign(own_.size(), 0);
   changed_.assign(own_.size(), 0);
   prev_heading_.assign(own_.size(), 0.f);
   removed_.assign(own_.size(), 0);

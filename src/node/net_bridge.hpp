@@ -272,7 +272,9 @@ class NetBridge {
   std::vector<Vec3> accel_;     // per own vehicle: filtered local acceleration, m/s^2
   std::vector<float> yaw_rate_;  // per own vehicle: this tick's heading change, rad/s
   std::vector<DrAnchor> anchors_;  // per own vehicle: its last exact DR test (dr_bound.hpp)
-  std::vector<std::uint8_t> skip_;  // per own vehicle: removed, or this tick's Entity State surely not due
+  std::vector<std::vector<std::uint32_t>> due_;  // per range of own vehicles: not removed, and the Entity State maybe due
+  std::vector<std::vector<std::uint32_t>> altered_;  // per range: those of due_ whose damage or group changed
+  std::vector<size_t> altered_at_;  // this tick: the changed vehicles' places in order_, ascending
   std::vector<std::uint8_t> changed_;  // per own vehicle: this tick, damage or group not as last sent
   std::vector<std::uint32_t> order_;  // this tick's own vehicles not skipped, in round-robin order
   struct Tested {                     // an exact test made ahead on the pool (vehicle_publish.cpp)

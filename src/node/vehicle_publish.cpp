@@ -54,7 +54,10 @@ void NetBridge::publish_vehicles() {
   // one tick is not sent as |a| = 100 m/s^2), the yaw rate, and whether its Entity State is surely
   // not due (dr_bound.hpp).
   const double alpha = dt / (kAccelTauS + dt);
-  auto local = [&](int, size_t i0, size_t i1) {
+  auto local = [&](int c, size_t i0, size_t i1) {
+    std::vector<std::uint32_t>& due = due_[c];  // this range's vehicles not skipped, ascending
+    std::vector<std::uint32_t>& altered = altered_[c];  // of those, the changed ones
+    due.clear(), altered.clear();
     for (size_t i = i0; i < i1; ++i) {
       const int e = own_[i];
       const Vec3& v = w.ents.vel[e];
@@ -68,7 +71,7 @@ void NetBridge::publish_vehicles() {
       // The change is the loop's `changed` for the same reason: past the cap it looks only at
       // changed vehicles, reading no more of the others than this byte.
       if (removed_[i]) {
-        skip_[i] = 1, changed_[i] = 0;
+        changed_[i] = 0;
         continue;
       }
       const bool changed = pubs_[i].has_sent() && (damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]) !=
@@ -77,15 +80,31 @@ void NetBridge::publish_vehicles() {
       const bool quiet = opt_.dr_prefilter && dr_quiet(anchors_[i], pubs_[i], w, e, t);
       const bool repeat = announce_left_[i] > 0 && t >= announce_at_[i] - 1e-9;  // kAnnounceRepeats
       changed_[i] = changed;
-      skip_[i] = quiet && !repeat && !changed;
+      if (!(quiet && !repeat && !changed)) due.push_back(static_cast<std::uint32_t>(i));
+      if (changed) altered.push_back(static_cast<std::uint32_t>(i));
     }
   };
-  core::run_chunks(sim_.jobs(), n, 128, local, 4);  // 4 a thread: claimed as threads come free
+  if (due_.size() < static_cast<size_t>(core::Jobs::kMaxChunks))
+    due_.resize(core::Jobs::kMaxChunks), altered_.resize(core::Jobs::kMaxChunks);
+  const int ranges = core::run_chunks(sim_.jobs(), n, 128, local, 4);  // 4 a thread: claimed as threads come free
   // Round robin from where the last tick's cap stopped, so no vehicle waits more than a few ticks;
-  // removed vehicles and those the exact test would pass over (skip_) are not looked at.
-  order_.clear();
-  for (size_t k = 0, i = n ? rr_ % n : 0; k < n; ++k, i = i + 1 == n ? 0 : i + 1)
-    if (!skip_[i]) order_.push_back(static_cast<std::uint32_t>(i));
+  // removed vehicles and those the exact test would pass over are not looked at. The ranges'
+  // lists, in range order, are every vehicle not skipped in ascending order: from the first at
+  // or past the start, then from the beginning (what a walk from the start round would give).
+  // altered_at_: the places in order_ of the changed vehicles, ascending (past the cap the loop
+  // looks at no others).
+  order_.clear(), altered_at_.clear();
+  const std::uint32_t start = n ? static_cast<std::uint32_t>(rr_ % n) : 0;
+  for (int pass = 0; pass < 2; ++pass)
+    for (int c = 0; c < ranges; ++c) {
+      const auto& due = due_[c];
+      const auto cut = std::lower_bound(due.begin(), due.end(), start);
+      const auto from = pass == 0 ? cut : due.begin(), to = pass == 0 ? due.end() : cut;
+      for (const std::uint32_t i : altered_[c])
+        if ((i >= start) == (pass == 0))
+          altered_at_.push_back(order_.size() + (std::lower_bound(from, to, i) - from));
+      order_.insert(order_.end(), from, to);
+    }
   // With worker threads, the exact tests (exact_state: geodesy) of the next vehicles in that
   // order (a batch, kMaxTestBatch) run on the pool, each into its own slot (its anchor copied
   // first); the loop takes a vehicle's slot when it reaches it. exact_state reads the world only
@@ -94,13 +113,19 @@ void NetBridge::publish_vehicles() {
   // cap) are dropped, anchors and counts untouched. Not once the cap defers all but changes.
   core::Jobs* jobs = sim_.jobs();
   size_t tested0 = 0, tested1 = 0;  // positions in order_ whose tests are in tested_
+  size_t next_altered = 0;            // into altered_at_
   for (size_t p = 0; p < order_.size(); ++p) {
     const size_t i = order_[p];
     // A damage change, or a move into another cell's group (announced there at once): changed_.
     const bool changed = changed_[i];
     const bool capped = (!pack_ || aoi_) && sent_now >= kMaxDatagramsPerTick;
     const bool deferring = capped && first_deferred != n && opt_.dr_prefilter;
-    if (deferring && !changed) continue;  // deferred whatever it says
+    if (deferring && !changed) {  // deferred whatever it says; so are the rest but the changed
+      while (next_altered < altered_at_.size() && altered_at_[next_altered] <= p) ++next_altered;
+      if (next_altered == altered_at_.size()) break;
+      p = altered_at_[next_altered] - 1;
+      continue;
+    }
     const int e = own_[i];
     const std::uint32_t app = damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]);
     const std::uint32_t group = group_at(w.ents.pos[e]);
