@@ -13,6 +13,7 @@ namespace {
 inline int32_t ifloor(double v) { return static_cast<int32_t>(static_cast<int64_t>(v + 1073741824.0) - 1073741824); }
 // A box's larger extent in x and y.
 inline double extent(const Box& b) { return std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]); }
+
 inline uint32_t hash_cell(int32_t x, int32_t y, uint32_t mask) {
   return (static_cast<uint32_t>(x) * 73856093u ^ static_cast<uint32_t>(y) * 19349663u) & mask;
 }
@@ -35,7 +36,7 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
   on_ranges([&](int c, size_t b0, size_t b1) {
     int64_t sum = 0;
     for (size_t i = b0; i < b1; ++i)
-      if (const double e = extent(boxes[i]); e > 0) sum += std::llround(std::min(e, 1e9) * 256);  // (NaN: 0)
+      if (const double e = extent(boxes[i]); e > 0) sum += in_256ths(std::min(e, 1e9));  // (NaN: 0)
     part_[c].sum = sum;
   });
   int64_t sum = 0;

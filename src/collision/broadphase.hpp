@@ -43,6 +43,14 @@ inline Box swept_box(const Vec3& c0, const Vec3& c1, double r) {
   return b;
 }
 
+// llround(e * 256) for an extent e >= 0 that is a float's value (the grid's mean extent sums
+// these), without the libm call where that is exact: e * 256 has at most 24 significant bits, so
+// below 2^28 adding 0.5 rounds nothing and truncation rounds half away from zero as llround does.
+inline int64_t in_256ths(double e) {
+  const double y = e * 256;
+  return y < 0x1p28 ? static_cast<int64_t>(y + 0.5) : std::llround(y);
+}
+
 class MovingGrid {
  public:
   // Appends to `out` (cleared first) every pair (i, j), i < j, whose boxes overlap, each once,

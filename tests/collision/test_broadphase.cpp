@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <random>
 
 #include "collision/collision.hpp"
@@ -30,6 +33,27 @@ TEST(MovingGrid, AgreesWithBruteForceOnRandomScenes) {
     std::sort(a.begin(), a.end());
     EXPECT_EQ(a, b) << "scene " << scene;
   }
+}
+
+// The grid's mean extent sums extents in whole 1/256 m: in_256ths is llround(e * 256) for every
+// float extent, halves (k + 1/2) / 256 and the ends of its exact range included.
+TEST(MovingGrid, ExtentsIn256thsRoundAsLlround) {
+  std::mt19937 rng(12);
+  std::uniform_int_distribution<uint32_t> bits(0, 0x7f7fffffu);  // every finite float >= 0
+  auto check = [](float f) {
+    const double e = f;
+    ASSERT_EQ(collision::in_256ths(e), std::llround(e * 256)) << e;
+  };
+  for (int k = 0; k < 200000; ++k) {
+    uint32_t b = bits(rng);
+    float f;
+    std::memcpy(&f, &b, sizeof f);
+    if (f <= 1e9f) check(f);
+  }
+  for (int k = 0; k < 4096; ++k) check((k + 0.5f) / 256), check(k / 256.0f), check(std::nextafter((k + 0.5f) / 256, 0.0f));
+  for (float f : {0.0f, 1e-45f, 0.49999997f / 256, 0.5f / 256, 0x1p20f, std::nextafter(0x1p20f, 0.0f),
+                  std::nextafter(0x1p20f, 1e30f), 1e9f})
+    check(f);
 }
 
 TEST(ShapeTiers, NestOnRealModelsAtRandomPoses) {
