@@ -16,13 +16,16 @@
 // 1- and 2-thread runs of each kind run the same ticks (their event logs are compared: they must
 // be the same bytes, else the bench stops). Past 32,767 entities the node numbers its entities
 // under several DIS applications (node/ownership.hpp), so the whole tick is measured at every N.
-// Usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T]]
+// Usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T] [--stages]]
 //   default N = 500 ... 200,000 -> bench/results/tick_scaling.csv; --quick: 500 and 5,000, no CSV;
 //   --n without --csv: no CSV (the committed one is the chart of every N).
 //   --one 1,2: only the node with net on (1) or off (0) on that many threads, `warm` + T ticks
 //   (default: the table's), its median printed, no CSV: for a profiler (callgrind
 //   --toggle-collect='npsnet::node::Simulation::tick()': two runs, T and T + 30, give the
 //   instructions of 30 steady ticks).
+//   --stages (with --one): also the median ms of each stage of the tick, timed through the
+//   Simulation's hooks (before_dynamics, before_detect, before_apply, on_tick): net in and fires,
+//   dynamics, collision and response, apply and events, net out, the rest.
 //   --prewake 0: no wake-up of the pool ahead of each tick (default 1: as a paced node, run.cpp):
 //   the tick's thread wakes the sleeping worker itself (~11 us at 500 vehicles).
 #include <unistd.h>
@@ -55,6 +58,21 @@ std::string slurp(const std::filesystem::path& p) {
   return ss.str();
 }
 
+// The tick's stages, timed from the Simulation's hooks (--stages).
+struct StageClock {
+  static constexpr int kStages = 6;
+  static constexpr const char* kNames[kStages] = {"net in, fires", "dynamics",      "collision, response",
+                                                  "apply, events", "net out",       "the rest"};
+  std::vector<double> ms[kStages];
+  std::chrono::steady_clock::time_point last;
+  void begin() { last = std::chrono::steady_clock::now(); }
+  void mark(int k) {
+    const auto now = std::chrono::steady_clock::now();
+    ms[k].push_back(std::chrono::duration<double, std::milli>(now - last).count());
+    last = now;
+  }
+};
+
 // One node: its event log (a file), Simulation, and, with net, an offline bridge.
 struct Node {
   std::filesystem::path file;
@@ -75,6 +93,20 @@ struct Node {
     }
   }
   std::vector<double> cpu_ms;  // the process's CPU time over the tick (every thread of it)
+  std::unique_ptr<StageClock> stages;
+  // Times the tick's stages from here on (after the bridge attached its on_tick, which it wraps).
+  void time_stages() {
+    stages = std::make_unique<StageClock>();
+    StageClock& c = *stages;
+    sim.before_dynamics = [&c] { c.mark(0); };
+    sim.before_detect = [&c](const world::World&) { c.mark(1); };
+    sim.before_apply = [&c](const world::World&, const world::Changes&) { c.mark(2); };
+    sim.on_tick = [&c, inner = sim.on_tick](const node::TickReport& r) {
+      c.mark(3);
+      if (inner) inner(r);
+      c.mark(4);
+    };
+  }
   // prewake: as a paced node does (node/run.cpp), the pool's workers are woken untimed a little
   // before the tick, so that they spin into its first stage instead of sleeping.
   void timed_tick(bool prewake) {
@@ -86,7 +118,9 @@ struct Node {
     }
     const double c0 = cpu_now_ms();
     const auto t0 = std::chrono::steady_clock::now();
+    if (stages) stages->begin();
     sim.tick();
+    if (stages) stages->mark(5);
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     cpu_ms.push_back(cpu_now_ms() - c0);
   }
@@ -120,7 +154,7 @@ int main(int argc, char** argv) {
   std::vector<int> ns = {500, 1000, 2000, 5000, 10000, 20000, 50000, 100000, 200000};
   std::string csv = std::string(NPSNET_SOURCE_DIR) + "/bench/results/tick_scaling.csv";
   int one_net = -1, one_threads = 1, ticks_override = 0;
-  bool some_n = false, csv_given = false, prewake = true;
+  bool some_n = false, csv_given = false, prewake = true, stages = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) ns = {500, 5000}, csv.clear();
     else if (!std::strcmp(argv[i], "--one") && i + 1 < argc &&
@@ -130,6 +164,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--ticks") && i + 1 < argc && (ticks_override = std::atoi(argv[++i])) > 0) {
     }
     else if (!std::strcmp(argv[i], "--prewake") && i + 1 < argc) prewake = std::atoi(argv[++i]) != 0;
+    else if (!std::strcmp(argv[i], "--stages")) stages = true;
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i], csv_given = true;
     else if (!std::strcmp(argv[i], "--n") && i + 1 < argc) {
       some_n = true;
@@ -137,7 +172,7 @@ int main(int argc, char** argv) {
       std::stringstream ss(argv[++i]);
       for (std::string t; std::getline(ss, t, ',');) ns.push_back(std::stoi(t));
     } else {
-      std::fprintf(stderr, "usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T]] [--prewake 0|1]\n");
+      std::fprintf(stderr, "usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T] [--stages]] [--prewake 0|1]\n");
       return 2;
     }
   }
@@ -161,6 +196,7 @@ int main(int argc, char** argv) {
     if (one_net >= 0) {  // one node alone (profiling)
       Node nd(w, sc, one_threads, one_net == 1, "-one.jsonl");
       for (int i = 0; i < warm; ++i) nd.sim.tick();
+      if (stages) nd.time_stages();
       for (int i = 0; i < ticks; ++i) nd.timed_tick(prewake);
       std::printf("%8d %9zu %6d | %s, %d thread(s): median %.3f ms, cpu %.3f ms | %d\n", n, w.ents.size(), ticks,
                   one_net ? "net on" : "net off", one_threads, nd.median(), nd.cpu_median(), nd.collisions());
@@ -168,6 +204,9 @@ int main(int argc, char** argv) {
         std::printf("  Entity States: digest %016llx, %llu exact DR tests\n",
                     static_cast<unsigned long long>(nd.bridge->entity_state_digest()),
                     static_cast<unsigned long long>(nd.bridge->exact_dr_tests()));
+      if (nd.stages)
+        for (int k = 0; k < StageClock::kStages; ++k)
+          std::printf("  stage %-20s median %.4f ms\n", StageClock::kNames[k], Node::median_of(nd.stages->ms[k]));
       continue;
     }
     std::vector<std::unique_ptr<Node>> nodes;  // [net off 1t, net off 2t, net 1t, net 2t]

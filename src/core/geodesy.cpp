@@ -118,7 +118,6 @@ TmRaw tm_forward_raw(double lat, double dlon) {
   return {c.a_rect * eta, c.a_rect * xi, gamma};
 }
 
-
 // Inverse TM (no offsets) from xi = y / A, eta = x / A and their series terms -> (lat, dlon) rad.
 void tm_inverse_terms(double xi, double eta, const FrameMemo::Terms& xt, const FrameMemo::Terms& et, double& lat,
                       double& dlon) {
