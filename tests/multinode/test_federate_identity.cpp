@@ -13,8 +13,10 @@
 #include "peer_support.hpp"
 
 TEST(FederateIdentity, ClashReportedOnceEchoNeverDisVersionSix) {
-  // Heartbeat 0.5 s: our own echo comes back several times before the clash.
-  fed::Federate f("fed_identity", "federate.toml", 4.0, {"--dis-version", "6"}, {"NPSNET_DIS_TIMEOUT_S=1.2"});
+  // Heartbeat 0.5 s: our own echo comes back several times before the clash. An 8 s run, though
+  // the test is over at 4.5 s: a node that comes up later than its run's length refuses to join,
+  // and CI once saw this one come up 5.3 s after it was launched (under ASan, 4 s run: refused).
+  fed::Federate f("fed_identity", "federate.toml", 8.0, {"--dis-version", "6"}, {"NPSNET_DIS_TIMEOUT_S=1.2"});
   const auto& node = f.node;
   auto& listener = f.peer;
   std::vector<std::uint8_t> versions;
