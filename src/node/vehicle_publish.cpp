@@ -66,10 +66,10 @@ void NetBridge::publish_vehicles() {
       prev_vel_[i] = v;
       yaw_rate_[i] = static_cast<float>(wrap180(w.ents.heading_deg[e] - prev_heading_[i]) * kDeg / dt);
       prev_heading_[i] = w.ents.heading_deg[e];
-      // Passed over by the serial loop below: removed, or no damage / group change and surely
-      // not due (what it would find for itself; its sends change only vehicle i's own fields).
-      // The change is the loop's `changed` for the same reason: past the cap it looks only at
-      // changed vehicles, reading no more of the others than this byte.
+      // Left out of `due` (the serial loop never sees it): removed, or no damage / group change
+      // and surely not due (what the loop would find for itself; its sends change only vehicle
+      // i's own fields). The changed ones are also listed in `altered`: past the cap the loop
+      // jumps from one to the next without reading the others.
       if (removed_[i]) {
         changed_[i] = 0;
         continue;
