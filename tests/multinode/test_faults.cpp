@@ -6,7 +6,7 @@
 // the same collisions across nodes with the same outcomes. A control run of the
 // same exercise without faults is the reference for what does not depend on timing: the craters
 // and the changed objects must be the control's. Skips where namespaces are not available (77).
-// Each run is bounded (nodes end 44 s after the start; the script kills them 30 s later); the test
+// Each run is bounded (nodes end 48 s after launch; the script kills them 30 s later); the test
 // gives each 150 s, then SIGTERM (its trap deletes the namespaces by name) and 10 s to clean up.
 #include <gtest/gtest.h>
 
