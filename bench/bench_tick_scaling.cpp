@@ -22,7 +22,8 @@
 //   --one 1,2: only the node with net on (1) or off (0) on that many threads, `warm` + T ticks
 //   (default: the table's), its median printed, no CSV: for a profiler (callgrind
 //   --toggle-collect='npsnet::node::Simulation::tick()': two runs, T and T + 30, give the
-//   instructions of 30 steady ticks).
+//   instructions of 30 steady ticks; on a build configured with -DNPSNET_ISA=portable: Debian
+//   12's valgrind stops on an AVX form of the x86-64-v3 build, CMakeLists.txt).
 //   --stages (with --one): also the median ms of each stage of the tick, timed through the
 //   Simulation's hooks (before_dynamics, before_detect, before_apply, on_tick): net in and fires,
 //   dynamics, collision and response, apply and events, net out, the rest.
