@@ -9,13 +9,8 @@
 namespace npsnet::collision {
 
 namespace {
-// floor(v) for |v| < 2^30 without a libm call.
-inline int32_t ifloor(double v) { return static_cast<int32_t>(static_cast<int64_t>(v + 1073741824.0) - 1073741824); }
 // A box's larger extent in x and y.
 inline double extent(const Box& b) { return std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]); }
-inline uint32_t hash_cell(int32_t x, int32_t y, uint32_t mask) {
-  return (static_cast<uint32_t>(x) * 73856093u ^ static_cast<uint32_t>(y) * 19349663u) & mask;
-}
 }  // namespace
 
 void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint32_t, uint32_t>>& out,

@@ -43,6 +43,13 @@ inline Box swept_box(const Vec3& c0, const Vec3& c1, double r) {
   return b;
 }
 
+// floor(v) for |v| < 2^30 without a libm call (grid cells).
+inline int32_t ifloor(double v) { return static_cast<int32_t>(static_cast<int64_t>(v + 1073741824.0) - 1073741824); }
+// The hash of grid cell (x, y) in a table of mask + 1 buckets (a power of two).
+inline uint32_t hash_cell(int32_t x, int32_t y, uint32_t mask) {
+  return (static_cast<uint32_t>(x) * 73856093u ^ static_cast<uint32_t>(y) * 19349663u) & mask;
+}
+
 // llround(e * 256) for an extent e >= 0 that is a float's value (the grid's mean extent sums
 // these), without the libm call where that is exact: e * 256 has at most 24 significant bits, so
 // below 2^28 adding 0.5 rounds nothing and truncation rounds half away from zero as llround does.

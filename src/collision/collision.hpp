@@ -11,7 +11,8 @@
 //  every body sweeps its sphere from (end centre - velocity * dt) to its end centre; the broad
 //    phase works on the swept boxes (fixed objects: the world's 125 m grid, world/fixed_grid.hpp,
 //    listing each object in every gridsquare its reach overlaps, queried over the swept box;
-//    moving: a hashed grid sized to the swept boxes, rebuilt each tick into reused arrays);
+//    moving: fat boxes in a hashed grid, kept from tick to tick, pair_cache.hpp; the pairs in
+//    any order, since every result below is sorted);
 //  the narrow phase solves the swept-sphere time of impact analytically (sweep.hpp), then goes
 //    up the pair's shape tiers (sphere -> oriented box -> convex hull -> polygon mesh, shapes.hpp)
 //    only while the cheaper tier cannot decide;
@@ -26,7 +27,7 @@
 // Threading: detect and respond read a const World; a Detector (its buffers, the contact episodes
 // of last tick) belongs to one thread. Given a core::Jobs (set_jobs), detect fans out to its
 // workers: the per-entity sweeps (each writes its own slots), the fixed-object tests per range of
-// entities, the moving grid's pair search per range of buckets and the narrow phase per range of
+// entities, the moving broad phase's passes (pair_cache.hpp) and the narrow phase per range of
 // pairs, each range into its own lane (contacts, pair keys, stats, shape scratch); the lanes are
 // merged in range order, so contacts, events and stats are the same bytes for any thread count.
 // The world is changed only by world::apply of respond's Changes.
@@ -39,6 +40,7 @@
 
 #include "collision/broadphase.hpp"
 #include "collision/id_rank.hpp"
+#include "collision/pair_cache.hpp"
 #include "collision/shapes.hpp"
 #include "collision/sweep.hpp"
 #include "collision/trace.hpp"
@@ -219,8 +221,7 @@ class Detector {
   std::vector<float> r_sphere_, r_bound_;  // thesis sphere radius; bound of the model (true radius)
   std::vector<Box> boxes_;              // swept boxes
   std::vector<std::pair<uint32_t, uint32_t>> pairs_;
-  std::vector<uint32_t> found_;
-  MovingGrid moving_;
+  PairCache moving_;  // the moving bodies' broad phase, kept across ticks
   std::vector<float> fixed_x_, fixed_y_, fixed_r_;  // fixed objects' test circles (m)
   size_t fixed_indexed_ = static_cast<size_t>(-1);
   IdRank rank_, fixed_rank_;

@@ -413,8 +413,9 @@ void Detector::detect_continuous(const world::World& w) {
     }
   });
 
-  // Moving pairs: hashed grid on the swept boxes, then the analytic sweep, then the tiers.
-  moving_.pairs(boxes_, pairs_, jobs_);
+  // Moving pairs: the fat boxes kept from the last tick (pair_cache.hpp; entities keep their
+  // index), then the analytic sweep, then the tiers.
+  moving_.pairs(boxes_, order_, ents.size(), pairs_, jobs_);
   in_lanes(pairs_.size(), kPairGrain, kPairChunksPerThread, [&](int c, size_t p0, size_t p1) {
     for (size_t p = p0; p < p1; ++p) pair_contact(w, p, lanes_[c]);
   });

@@ -1,0 +1,124 @@
+// The persistent broad phase (pair_cache.hpp): tick after tick of moving bodies, some appearing,
+// some gone, some turning large or not finite, its pairs are brute force's (the set MovingGrid
+// gives), and the same in the same order on one and on several threads.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "collision/pair_cache.hpp"
+
+using namespace npsnet;
+using collision::Box;
+using Pairs = std::vector<std::pair<uint32_t, uint32_t>>;
+
+namespace {
+
+// A world of `ids` bodies drifting, each active or not this tick; boxes of the active ones in id order.
+struct Drift {
+  std::mt19937 rng;
+  std::vector<Vec3> pos, vel;
+  std::vector<float> r;
+  std::vector<uint8_t> active;
+  float side;
+  Drift(int ids, float side_m, unsigned seed) : rng(seed), side(side_m) {
+    std::uniform_real_distribution<float> u(0, 1);
+    for (int i = 0; i < ids; ++i) {
+      pos.emplace_back(u(rng) * side, u(rng) * side, u(rng) * 4);
+      vel.emplace_back((u(rng) - 0.5) * 6, (u(rng) - 0.5) * 6, 0);  // up to 3 m a tick
+      r.push_back(1 + 5 * u(rng));
+      active.push_back(u(rng) < 0.9);
+    }
+  }
+  // One tick: bodies move (a few turn, a few switch on or off, now and then one flies fast).
+  void step(std::vector<Box>& boxes, std::vector<uint32_t>& ids) {
+    std::uniform_real_distribution<float> u(0, 1);
+    boxes.clear(), ids.clear();
+    for (size_t i = 0; i < pos.size(); ++i) {
+      if (u(rng) < 0.02) active[i] = !active[i];
+      if (u(rng) < 0.05) vel[i] = Vec3((u(rng) - 0.5) * 6, (u(rng) - 0.5) * 6, 0);
+      const Vec3 v = u(rng) < 0.01 ? Vec3(vel[i] * 60) : vel[i];  // a round's sweep: large
+      const Vec3 c0 = pos[i];
+      pos[i] += v;
+      if (!active[i]) continue;
+      ids.push_back(static_cast<uint32_t>(i));
+      boxes.push_back(collision::swept_box(c0, pos[i], r[i]));
+    }
+  }
+};
+
+Pairs sorted(Pairs p) {
+  std::sort(p.begin(), p.end());
+  return p;
+}
+
+}  // namespace
+
+TEST(PairCache, AgreesWithBruteForceTickAfterTick) {
+  for (int scene = 0; scene < 6; ++scene) {
+    const int n = 200 + scene * 300;
+    const float side = scene % 2 ? 150.0f : 20.0f * std::sqrt(static_cast<float>(n)) * 4;  // crowded, spread
+    Drift d(n, side, 100 + scene);
+    collision::PairCache cache;
+    std::vector<Box> boxes;
+    std::vector<uint32_t> ids;
+    Pairs got, want;
+    size_t found = 0, moved = 0;
+    for (int tick = 0; tick < 60; ++tick) {
+      d.step(boxes, ids);
+      cache.pairs(boxes, ids, d.pos.size(), got);
+      collision::brute_pairs(boxes, want);
+      ASSERT_EQ(sorted(got), want) << "scene " << scene << ", tick " << tick;
+      found += want.size(), moved += cache.moved();
+    }
+    EXPECT_GT(found, 0u) << "scene " << scene << ": pairs to find";
+    // (about a quarter move a tick here; with no margin, fat box = box, about two thirds)
+    EXPECT_LT(moved, static_cast<size_t>(60 * n) * 2 / 5) << "most bodies keep their fat box from tick to tick";
+  }
+}
+
+TEST(PairCache, SamePairsInTheSameOrderOnOneAndSeveralThreads) {
+  for (int threads : {2, 3}) {
+    Drift a(3000, 800, 7), b(3000, 800, 7);
+    collision::PairCache one, many;
+    core::Jobs jobs(threads);
+    jobs.set_max_grain(1);  // every stage split as finely as the pool allows
+    std::vector<Box> boxes_a, boxes_b;
+    std::vector<uint32_t> ids_a, ids_b;
+    Pairs pa, pb;
+    for (int tick = 0; tick < 30; ++tick) {
+      a.step(boxes_a, ids_a), b.step(boxes_b, ids_b);
+      one.pairs(boxes_a, ids_a, a.pos.size(), pa);
+      many.pairs(boxes_b, ids_b, b.pos.size(), pb, &jobs);
+      ASSERT_EQ(pa, pb) << threads << " threads, tick " << tick;
+    }
+  }
+}
+
+// Bodies not finite, far beyond any cell, or suddenly all large (the cell is built again) still
+// give brute force's pairs, and never a pair with a body that is not finite.
+TEST(PairCache, OddBoxesAndACellThatNoLongerFits) {
+  collision::PairCache cache;
+  std::vector<Box> boxes;
+  std::vector<uint32_t> ids;
+  Pairs got, want;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (int tick = 0; tick < 8; ++tick) {
+    boxes.clear(), ids.clear();
+    const float grow = tick < 4 ? 1.0f : 200.0f;  // from tick 4 every body is 200x as large
+    for (uint32_t i = 0; i < 400; ++i) {
+      const float x = static_cast<float>(i % 20) * 9 + tick, y = static_cast<float>(i / 20) * 9, h = 3 * grow;
+      boxes.push_back(Box{{x - h, y - h, 0}, {x + h, y + h, 2}});
+      ids.push_back(i * 2);  // ids with gaps
+    }
+    boxes[7] = Box{{nan, 0, 0}, {1, 1, 1}};
+    boxes[8] = Box{{1e12f, 1e12f, 0}, {1e12f + 5, 1e12f + 5, 1}};
+    cache.pairs(boxes, ids, 800, got);
+    collision::brute_pairs(boxes, want);
+    ASSERT_EQ(sorted(got), want) << "tick " << tick;
+    for (const auto& [i, j] : got) EXPECT_TRUE(i != 7 && j != 7);
+  }
+  EXPECT_GE(cache.builds(), 2u) << "the cell was built again for the bodies grown 200x";
+}
