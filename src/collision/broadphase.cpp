@@ -130,7 +130,7 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
   on_ranges(fill);
   // Pairs inside each bucket: same cell, reported in the first cell the two boxes share.
   // Ranges of buckets, each into its own buffer (chunk_out_), concatenated in range order.
-  constexpr size_t kBucketGrain = 256, kLargeGrain = 4096;
+  constexpr size_t kBucketGrain = 256;
   const int k = jobs ? jobs->chunks(nb, kBucketGrain) : 1;
   if (chunk_out_.size() < static_cast<size_t>(k)) chunk_out_.resize(k);
   auto range = [&](int c, size_t h0, size_t h1) {
@@ -168,21 +168,7 @@ void MovingGrid::pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint
   }
   // Large boxes against every box (each pair once), per range of boxes into the range's buffer,
   // concatenated in range order: box order, as on one thread.
-  const int kl = jobs ? jobs->chunks(n, kLargeGrain) : 1;
-  if (chunk_out_.size() < static_cast<size_t>(kl)) chunk_out_.resize(kl);
-  for (uint32_t l : large_) {
-    auto against = [&](int c, size_t j0, size_t j1) {
-      auto& o = kl == 1 ? out : chunk_out_[c];
-      if (kl > 1) o.clear();
-      for (uint32_t j = static_cast<uint32_t>(j0); j < j1; ++j) {
-        if (j == l || (is_large_[j] && j < l)) continue;  // large-large pairs once
-        if (overlap(boxes[l], boxes[j])) o.emplace_back(std::min(l, j), std::max(l, j));
-      }
-    };
-    core::run_chunks(jobs, n, kLargeGrain, against);
-    if (kl > 1)
-      for (int c = 0; c < kl; ++c) out.insert(out.end(), chunk_out_[c].begin(), chunk_out_[c].end());
-  }
+  large_pairs(boxes, large_, [&](uint32_t j) { return is_large_[j] != 0; }, out, chunk_out_, jobs);
 }
 
 void brute_pairs(const std::vector<Box>& boxes, std::vector<std::pair<uint32_t, uint32_t>>& out) {

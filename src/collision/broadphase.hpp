@@ -16,6 +16,7 @@
 //    own buffer, concatenated in range order: the same pairs in the same order for any thread count.
 // Units: metres, local frame; boxes in float (a 50 km map keeps ~4 mm resolution).
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -56,6 +57,33 @@ inline uint32_t hash_cell(int32_t x, int32_t y, uint32_t mask) {
 inline int64_t in_256ths(double e) {
   const double y = e * 256;
   return y < 0x1p28 ? static_cast<int64_t>(y + 0.5) : std::llround(y);
+}
+
+using BoxPairs = std::vector<std::pair<uint32_t, uint32_t>>;
+
+// Appends to `out` the pairs (min, max) of each large box l (in `large`'s order) with every other
+// box whose box overlaps it, a pair of two large boxes once (is_large(j) names the large ones).
+// Per range of boxes on the pool, each range into chunk_out[c], concatenated in range order: the
+// same pairs in the same order for any thread count. Both broad phases test their large boxes so.
+template <class IsLarge>
+void large_pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>& large, IsLarge&& is_large, BoxPairs& out,
+                 std::vector<BoxPairs>& chunk_out, core::Jobs* jobs) {
+  constexpr size_t kGrain = 4096;  // boxes per range a large box is tested against
+  const size_t n = boxes.size();
+  const int k = jobs ? jobs->chunks(n, kGrain) : 1;
+  if (chunk_out.size() < static_cast<size_t>(k)) chunk_out.resize(k);
+  for (const uint32_t l : large) {
+    core::run_chunks(jobs, n, kGrain, [&](int c, size_t j0, size_t j1) {
+      BoxPairs& o = k == 1 ? out : chunk_out[c];
+      if (k > 1) o.clear();
+      for (uint32_t j = static_cast<uint32_t>(j0); j < j1; ++j) {
+        if (j == l || (j < l && is_large(j))) continue;  // large-large pairs once
+        if (overlap(boxes[l], boxes[j])) o.emplace_back(std::min(l, j), std::max(l, j));
+      }
+    });
+    if (k > 1)
+      for (int c = 0; c < k; ++c) out.insert(out.end(), chunk_out[c].begin(), chunk_out[c].end());
+  }
 }
 
 class MovingGrid {

@@ -12,7 +12,6 @@ namespace npsnet::collision {
 namespace {
 constexpr size_t kSlotGrain = 2048;   // bodies per range below which a pass stays on one thread
 constexpr size_t kQueryGrain = 256;   // moved bodies per range of grid queries
-constexpr size_t kLargeGrain = 4096;  // bodies per range a large body is tested against
 // Moved bodies lie in no spatial order: the buckets of the one kQueryAhead later are asked of the
 // cache before a body's grid update or query (a hint: no result changes).
 constexpr size_t kQueryAhead = 4;
@@ -248,19 +247,7 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
     const uint32_t i = slot_[a], j = slot_[b];
     if (overlap(boxes[i], boxes[j])) out.emplace_back(std::min(i, j), std::max(i, j));
   }
-  const int kl = jobs ? jobs->chunks(n, kLargeGrain) : 1;
-  if (chunk_pairs_.size() < static_cast<size_t>(kl)) chunk_pairs_.resize(kl);
-  for (uint32_t l : large_) {
-    core::run_chunks(jobs, n, kLargeGrain, [&](int c, size_t j0, size_t j1) {
-      auto& to = chunk_pairs_[c];
-      to.clear();
-      for (uint32_t j = static_cast<uint32_t>(j0); j < j1; ++j) {
-        if (j == l || (state_[ids[j]] == kLarge && j < l)) continue;  // large-large pairs once
-        if (overlap(boxes[l], boxes[j])) to.emplace_back(std::min(l, j), std::max(l, j));
-      }
-    });
-    for (int c = 0; c < kl; ++c) out.insert(out.end(), chunk_pairs_[c].begin(), chunk_pairs_[c].end());
-  }
+  large_pairs(boxes, large_, [&](uint32_t j) { return state_[ids[j]] == kLarge; }, out, chunk_pairs_, jobs);
 }
 
 }  // namespace npsnet::collision
