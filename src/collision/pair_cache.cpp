@@ -50,6 +50,7 @@ void PairCache::build(const std::vector<Box>& boxes) {
   for (auto& v : overflow_) v.clear();
   kept_.clear();
   std::fill(state_.begin(), state_.end(), kOut);
+  live_ = 0;
   // The cell: twice the largest fat extent among the ordinary bodies (at most 4x the mean).
   double sum = 0;
   size_t counted = 0;
@@ -162,7 +163,7 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
   }
   if (cell_ == 0 || rebuild_ || n > 4 * built_for_) build(boxes), rebuild_ = false;
   const int kmax = jobs ? jobs->chunks(std::max(n, fat_.size()), kSlotGrain, 4) : 1;
-  if (chunk_ids_.size() < static_cast<size_t>(kmax)) chunk_ids_.resize(kmax), chunk_moved_.resize(kmax), chunk_regrid_.resize(kmax);
+  if (chunk_ids_.size() < static_cast<size_t>(kmax)) chunk_ids_.resize(kmax), chunk_moved_.resize(kmax), chunk_regrid_.resize(kmax), chunk_new_.resize(kmax);
   // 1. Every body: its slot; moved when not listed, or its box left its fat box. A moved body
   //    gets its new fat box here when it stays in the same cells (most do: no bucket changes);
   //    the others are left to the serial pass (3).
@@ -170,9 +171,11 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
     auto& mv = chunk_moved_[c];
     auto& regrid = chunk_regrid_[c];
     mv.clear(), regrid.clear();
+    size_t fresh = 0;
     for (size_t i = i0; i < i1; ++i) {
       const uint32_t id = ids[i];
       slot_[id] = static_cast<uint32_t>(i), seen_[id] = tick_;
+      fresh += state_[id] == kOut;
       const Box& b = boxes[i];
       const Fat& was = fat_[id];
       if (state_[id] == kIn && b.lo[0] >= was.lox && b.lo[1] >= was.loy && b.hi[0] <= was.hix && b.hi[1] <= was.hiy)
@@ -188,14 +191,18 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
       else
         regrid.push_back(Regrid{static_cast<uint32_t>(i), id, in, f, r, q});
     }
+    chunk_new_[c] = fresh;
   }, 4);
   moved_.clear(), regrid_.clear();
   for (int c = 0; c < k1; ++c) {
     moved_.insert(moved_.end(), chunk_moved_[c].begin(), chunk_moved_[c].end());
     regrid_.insert(regrid_.end(), chunk_regrid_[c].begin(), chunk_regrid_[c].end());
   }
-  // 2. Bodies listed before and not now: gone.
-  const size_t ids_n = fat_.size();
+  // 2. Bodies listed before and not now: gone. Looked for only when some are: the listed
+  //    bodies that were listed before are fewer than the bodies listed before.
+  size_t fresh = 0;
+  for (int c = 0; c < k1; ++c) fresh += chunk_new_[c];
+  const size_t ids_n = live_ > n - fresh ? fat_.size() : 0;
   const int k2 = core::run_chunks(jobs, ids_n, kSlotGrain, [&](int c, size_t d0, size_t d1) {
     auto& gone = chunk_ids_[c];
     gone.clear();
@@ -226,6 +233,7 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
     fat_[q.id] = q.fat, range_[q.id] = q.to, state_[q.id] = kIn;
     insert(q.id, q.to);
   }
+  live_ = n;  // every listed body is in the grid or large; the gone ones are out
   if (large_.size() > std::max(kRebuildLarge, n / 8)) rebuild_ = true;  // the cell no longer fits: next call
   // 4. Kept pairs: those of two bodies that stayed; then the moved bodies' pairs, from the grid.
   kept_.erase(std::remove_if(kept_.begin(), kept_.end(),

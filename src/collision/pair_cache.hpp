@@ -23,9 +23,9 @@
 //    that cell came (more than max(kRebuildLarge, N / 8) large), or the bodies grew 4x in number.
 //    A bucket is one cache line (kInline entries in place, more in its overflow list).
 //  * Threading: the containment test (with the new fat box of a body that keeps its cells), the
-//    gone bodies and the moved bodies' grid queries run per range on the pool, each range into
-//    its own list, concatenated in range order; the buckets' updates and the kept pairs are
-//    serial, in body order. No allocation once warm (lists and overflows keep their capacity).
+//    gone bodies (looked for only when the count says some went) and the moved bodies' grid
+//    queries run per range on the pool, each range into its own list, concatenated in range
+//    order; the buckets' updates and the kept pairs are serial, in body order. No allocation once warm (lists and overflows keep their capacity).
 // Units: metres, local frame (float boxes, as MovingGrid).
 #pragma once
 #include <cstdint>
@@ -45,10 +45,8 @@ class PairCache {
 
   void pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>& ids, size_t id_count,
              std::vector<std::pair<uint32_t, uint32_t>>& out, core::Jobs* jobs = nullptr);
-  // The last call's bodies that moved (fat box made again, large ones included), and kept pairs.
+  // The last call's bodies that moved (fat box made again, large ones included); grid builds.
   size_t moved() const { return moved_.size(); }
-  size_t kept_pairs() const { return kept_.size(); }
-  double cell_m() const { return cell_; }
   size_t builds() const { return builds_; }
 
  private:
@@ -108,6 +106,7 @@ class PairCache {
   std::vector<Fat> fat_;         // per id
   std::vector<Range> range_;     // per id: the cells its fat box is listed in
   std::vector<uint8_t> state_;   // per id
+  size_t live_ = 0;              // ids not kOut (listed by the last call)
   std::vector<uint32_t> seen_;   // per id: the last call that listed it
   std::vector<uint32_t> gone_moved_;  // per id: the last call in which it moved or went
   std::vector<uint32_t> slot_;   // per id: its index in this call's boxes
@@ -117,6 +116,7 @@ class PairCache {
   std::vector<std::pair<uint32_t, uint32_t>> kept_;  // id pairs whose fat boxes overlap
   std::vector<std::vector<uint32_t>> chunk_ids_;     // per range: gone bodies
   std::vector<std::vector<Moved>> chunk_moved_;      // per range: moved bodies
+  std::vector<size_t> chunk_new_;                    // per range: bodies not listed before
   std::vector<std::vector<Regrid>> chunk_regrid_;    // per range: moved bodies that change cells
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> chunk_pairs_;  // per range
 };
