@@ -191,8 +191,16 @@ int main(int argc, char** argv) {
     world::Scenario sc = base;
     sc.background_vehicles = n;
     const world::World w = world::build_world(sc);
-    // Short runs at the largest N (a few minutes in all on the 2-core machine).
-    const int ticks = ticks_override ? ticks_override : n <= 5000 ? 41 : n <= 20000 ? 21 : n <= 50000 ? 11 : n <= 100000 ? 7 : 5;
+    // Ticks timed: 10 s of simulated time at the smallest N (past the first Entity States and
+    // their announce repeats, ticks 1-60, into the steady exercise), 1 s at 100,000 and 0.5 s
+    // at 200,000 (about 30 s in all on the 2-core machine; was 41 ... 5 ticks, a median of 7
+    // ticks at 100,000 moved by several per cent from run to run).
+    const int ticks = ticks_override ? ticks_override
+                      : n <= 1000              ? 600
+                      : n <= 5000              ? 300
+                      : n <= 20000             ? 120
+                      : n <= 100000            ? 60
+                                               : 30;
     const int warm = n <= 50000 ? 5 : 3;
     if (one_net >= 0) {  // one node alone (profiling)
       Node nd(w, sc, one_threads, one_net == 1, "-one.jsonl");

@@ -250,7 +250,7 @@ void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
   const int e = static_cast<int>(order_[i]);
   const world::Kind& ke = w.kinds[ents.kind[e]];
   const Box& b = boxes_[i];
-  w.grid.query(b.lo[0], b.lo[1], b.hi[0], b.hi[1], [&](int o, float) {
+  auto test = [&](int o, float) {
     const float x = fixed_x_[o], y = fixed_y_[o], r = fixed_r_[o];
     if (x + r < b.lo[0] || x - r > b.hi[0] || y + r < b.lo[1] || y - r > b.hi[1]) return;
     ++L.stats.fixed_tests;
@@ -286,7 +286,26 @@ void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
     }
     L.touching.push_back(contact_key(e, static_cast<int>(o), true));
     L.candidates.push_back(k);
-  });
+  };
+  // The objects near: kept from an earlier tick while the swept box stays in their box (near_).
+  FixedNear& nb = near_[e];
+  if (!(nb.lo[0] <= b.lo[0] && nb.lo[1] <= b.lo[1] && nb.hi[0] >= b.hi[0] && nb.hi[1] >= b.hi[1])) {
+    const float m = kNearMarginM + 0.5f * std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]);
+    nb.lo[0] = b.lo[0] - m, nb.lo[1] = b.lo[1] - m, nb.hi[0] = b.hi[0] + m, nb.hi[1] = b.hi[1] + m;
+    nb.n = 0;
+    w.grid.query_listed(nb.lo[0], nb.lo[1], nb.hi[0], nb.hi[1], [&](uint32_t k, const world::GridItem&) {
+      if (nb.n < kNearListed) nb.listed[nb.n] = k;
+      ++nb.n;
+    });
+  }
+  if (nb.n > static_cast<uint32_t>(kNearListed)) {  // many near: the grid's query of the swept box
+    w.grid.query(b.lo[0], b.lo[1], b.hi[0], b.hi[1], test);
+    return;
+  }
+  for (uint32_t t = 0; t < nb.n; ++t) {
+    const world::GridItem& it = w.grid.listing(nb.listed[t]);
+    if (world::FixedGrid::overlaps(it, b.lo[0], b.lo[1], b.hi[0], b.hi[1])) test(static_cast<int>(it.id), it.r);
+  }
 }
 
 void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
@@ -345,6 +364,8 @@ void Detector::detect_continuous(const world::World& w) {
   order_.clear();
   start_hpr_.resize(n), prev_hpr_.resize(n), prev_kind_.resize(n, -1), prev_ok_.resize(n, 0);
   yaw_dir_.resize(n), yaw_bits_.resize(n, 0x7fc00000u);
+  if (near_generation_ != w.grid.generation()) near_.clear(), near_generation_ = w.grid.generation();
+  near_.resize(n);
   for (int e = 0; e < n; ++e) {
     if (!ents.active[e]) {
       prev_ok_[e] = 0;

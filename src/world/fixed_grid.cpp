@@ -1,6 +1,7 @@
 // The fixed-object grid and its brute-force twin (fixed_grid.hpp).
 #include "world/fixed_grid.hpp"
 
+#include <atomic>
 #include <cassert>
 
 namespace npsnet::world {
@@ -28,6 +29,8 @@ void Gridsquares::set(double width_m, double depth_m, double cell_m) {
 void FixedGrid::build(const std::vector<Vec3>& pos, const std::vector<float>& reach_m, double width_m, double depth_m,
                       double cell_m) {
   assert(pos.size() == reach_m.size());
+  static std::atomic<uint64_t> builds{0};
+  generation_ = ++builds;
   set(width_m, depth_m, cell_m);
   objects_ = pos.size();
   const size_t ncell = static_cast<size_t>(cols_) * rows_;

@@ -71,6 +71,13 @@ class FixedGrid : public Gridsquares {
   // f(object, reach) once for every object whose reach square overlaps the box [lo, hi] in x, y.
   template <class F>
   void query(float lox, float loy, float hix, float hiy, F&& f) const {
+    query_listed(lox, loy, hix, hiy, [&](uint32_t, const GridItem& it) { f(static_cast<int>(it.id), it.r); });
+  }
+  // The same objects as listings: f(k, listing(k)), k a listing's place (stable until the grid
+  // is built again: generation()). A caller that keeps the listings a larger box gave may answer
+  // a box inside it with them and `overlaps` (collision: the fixed objects near a vehicle).
+  template <class F>
+  void query_listed(float lox, float loy, float hix, float hiy, F&& f) const {
     const int i0 = col(lox), i1 = col(hix), j0 = row(loy), j1 = row(hiy);
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) {
@@ -78,16 +85,24 @@ class FixedGrid : public Gridsquares {
         if (!(occupied_[c >> 6] >> (c & 63) & 1)) continue;  // most gridsquares are empty
         for (uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
           const GridItem& it = items_[k];
-          if (it.x + it.r < lox || it.x - it.r > hix || it.y + it.r < loy || it.y - it.r > hiy) continue;
+          if (!overlaps(it, lox, loy, hix, hiy)) continue;
           // Reported in the first gridsquare the box and the object's reach share.
           if ((i != i0 && col(it.x - it.r) != i) || (j != j0 && row(it.y - it.r) != j)) continue;
-          f(static_cast<int>(it.id), it.r);
+          f(k, it);
         }
       }
   }
+  const GridItem& listing(uint32_t k) const { return items_[k]; }
+  // Whether the item's reach square overlaps the box (query's test).
+  static bool overlaps(const GridItem& it, float lox, float loy, float hix, float hiy) {
+    return !(it.x + it.r < lox || it.x - it.r > hix || it.y + it.r < loy || it.y - it.r > hiy);
+  }
+  // Distinct for every build of any grid in the process (a copy keeps its original's).
+  uint64_t generation() const { return generation_; }
 
  private:
   size_t objects_ = 0;
+  uint64_t generation_ = 0;
   std::vector<uint32_t> start_;
   std::vector<uint64_t> occupied_;  // bit per gridsquare: lists something
   std::vector<GridItem> items_;

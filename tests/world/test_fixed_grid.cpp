@@ -73,8 +73,32 @@ TEST(FixedGrid, AgreesWithBruteForceOnRandomScenes) {
       const auto s = sorted(gb);
       EXPECT_EQ(std::adjacent_find(s.begin(), s.end()), s.end()) << "an object reported twice";
       EXPECT_EQ(s, sorted(boxed(b, lx, ly, hx, hy))) << "scene " << scene << " box " << q;
+      // The listings of a larger box, kept, answer the box inside it (collision's objects near a
+      // vehicle): those that overlap it are the box's query, each once.
+      const float m = static_cast<float>(u(rng) < 0.5 ? 10 * u(rng) : 200 * u(rng));
+      std::vector<int> kept;
+      g.query_listed(lx - m, ly - m, hx + m, hy + m, [&](uint32_t k, const world::GridItem& it) {
+        EXPECT_EQ(&g.listing(k), &it);
+        if (world::FixedGrid::overlaps(g.listing(k), lx, ly, hx, hy)) kept.push_back(static_cast<int>(it.id));
+      });
+      EXPECT_EQ(sorted(kept), s) << "scene " << scene << " box " << q << " margin " << m;
     }
   }
+}
+
+TEST(FixedGrid, EveryBuildHasItsOwnGeneration) {
+  const std::vector<Vec3> pos = {Vec3(10, 10, 0), Vec3(300, 200, 0)};
+  const std::vector<float> r = {2, 5};
+  world::FixedGrid a, b;
+  a.build(pos, r, kW, kD, kCell);
+  b.build(pos, r, kW, kD, kCell);
+  const world::FixedGrid copy = a;
+  EXPECT_NE(a.generation(), 0u);
+  EXPECT_NE(a.generation(), b.generation());
+  EXPECT_EQ(copy.generation(), a.generation());  // the same listings
+  const uint64_t first = a.generation();
+  a.build(pos, r, kW, kD, kCell);
+  EXPECT_NE(a.generation(), first);
 }
 
 TEST(FixedGrid, AWorldIndexesEveryObjectByItsReach) {
