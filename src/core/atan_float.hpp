@@ -14,14 +14,28 @@
 
 namespace npsnet {
 
-// static_cast<float>(rad2deg(std::atan2(y, x))), x > 0 and finite.
-inline float atan2_deg_float(double y, double x) {
+namespace detail {
+// The float d rounds to when its tolerance does not matter, else the libm expression's.
+inline float atan2_deg_float_of(double y, double x, double atan_yx) {
   if (y == 0) return static_cast<float>(y);
-  const double d = rad2deg(detail::atan_rational(y / x));
+  const double d = rad2deg(atan_yx);
   const double tol = 1e-12 * std::abs(d);
   const float lo = static_cast<float>(d - tol), hi = static_cast<float>(d + tol);
   if (lo == hi) return lo;
   return static_cast<float>(rad2deg(std::atan2(y, x)));
+}
+}  // namespace detail
+
+// static_cast<float>(rad2deg(std::atan2(y, x))), x > 0 and finite.
+inline float atan2_deg_float(double y, double x) {
+  return detail::atan2_deg_float_of(y, x, detail::atan_rational(y / x));
+}
+
+// The same of two slopes at once (terrain following's pitch and roll), bit for bit.
+inline void atan2_deg_float2(double y0, double x0, double y1, double x1, float& a, float& b) {
+  double r0, r1;
+  detail::atan_rational2(y0 / x0, y1 / x1, r0, r1);
+  a = detail::atan2_deg_float_of(y0, x0, r0), b = detail::atan2_deg_float_of(y1, x1, r1);
 }
 
 }  // namespace npsnet

@@ -218,8 +218,9 @@ void follow_terrain_along(world::World& w, int e, const Vec2& f) {
   const double hf = 0.5 * (fr + fl), hb = 0.5 * (br + bl), hr = 0.5 * (fr + br), hl = 0.5 * (fl + bl);
   ents.pos[e].z() = 0.25 * (hf + hb + hr + hl);
   // float(rad2deg(atan2(rise, run))), the same bits, mostly without libm (core/atan_float.hpp).
-  ents.pitch_deg[e] = atan2_deg_float(hf - hb, 2 * half_len);
-  ents.roll_deg[e] = atan2_deg_float(hl - hr, 2 * half_wid);  // right side down +
+  float pitch, roll;  // (both at once: the same bits as one by one)
+  atan2_deg_float2(hf - hb, 2 * half_len, hl - hr, 2 * half_wid, pitch, roll);  // roll: right side down +
+  ents.pitch_deg[e] = pitch, ents.roll_deg[e] = roll;
 }
 
 void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::Jobs* jobs, HeadingDirs* memo) {

@@ -1,6 +1,6 @@
 // Angle helpers: wrap360 (core/math.hpp) and atan2_deg_float (core/atan_float.hpp) give the bits
 // of the libm expressions they stand for; sincos_small, sincos_deg and atan2_rad
-// (core/trig.hpp) are within 1-2.5 ulp of long double.
+// (core/trig.hpp) are within 1-2.5 ulp of long double; their two-at-once forms give the same bits.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -43,9 +43,16 @@ TEST(Angles, Atan2DegFloatGivesTheBitsOfTheLibmExpression) {
   std::uniform_real_distribution<double> rise(-30.0, 30.0), run(1.0, 12.0), any(-1.0, 1.0), e10(-20.0, 20.0);
   std::uniform_int_distribution<int> scale(0, 8);
   int checked = 0;
+  double py = 0.25, px = 3.0;  // the last slope: paired with this one (atan2_deg_float2)
   auto check = [&](double y, double x) {
     const float a = atan2_deg_float(y, x), b = libm(y, x);
     ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << y << " " << x;
+    float p0, p1;
+    atan2_deg_float2(py, px, y, x, p0, p1);
+    const float b0 = libm(py, px);
+    ASSERT_TRUE(std::memcmp(&p0, &b0, sizeof p0) == 0 && std::memcmp(&p1, &b, sizeof p1) == 0)
+        << "pair " << py << " " << px << ", " << y << " " << x;
+    py = y, px = x;
     ++checked;
   };
   // Terrain slopes (rise over a footprint of 1-12 m, down to 1e-8 m) and any ratio over 40 decades.
@@ -97,6 +104,27 @@ TEST(Angles, SinCosSmallIsWithinOneUlpOfLongDouble) {
   EXPECT_GT(differ, 0);  // (so the test above is of this function, not of libm)
   EXPECT_TRUE(same_bits(sincos_small(0.0).s, 0.0) && same_bits(sincos_small(-0.0).s, -0.0));
   EXPECT_EQ(sincos_small(0.0).c, 1.0);
+}
+
+// Two angles at once (a vehicle's pitch and roll, world::pose_rotation): the bits of one at a time.
+TEST(Angles, SinCosDeg2GivesTheBitsOfSinCosDegForEachAngle) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> small(-44.0, 44.0), any(-1000.0, 1000.0);
+  const std::vector<double> edges = {0.0, -0.0, 43.999999999999993, -44.0, 44.0, 90.0, -180.0, 1e-300, 1e20,
+                                     std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()};
+  int paired = 0;
+  for (int i = 0; i < 400000; ++i) {
+    const size_t ne = edges.size();
+    const double d0 = i < static_cast<int>(ne * ne) ? edges[i % ne] : i % 5 ? small(rng) : any(rng);
+    const double d1 = i < static_cast<int>(ne * ne) ? edges[i / ne] : i % 7 ? small(rng) : any(rng);
+    SinCos a, b;
+    sincos_deg2(d0, d1, a, b);
+    const SinCos ra = sincos_deg(d0), rb = sincos_deg(d1);
+    ASSERT_TRUE(same_bits(a.s, ra.s) && same_bits(a.c, ra.c)) << d0 << " beside " << d1;
+    ASSERT_TRUE(same_bits(b.s, rb.s) && same_bits(b.c, rb.c)) << d1 << " beside " << d0;
+    paired += std::abs(d0) < 44 && std::abs(d1) < 44;
+  }
+  EXPECT_GT(paired, 200000);  // most went through the two-lane series
 }
 
 TEST(Angles, SinCosDegAndAtan2RadAreWithinTwoAndTwoAndAHalfUlpsOfLongDouble) {
