@@ -8,6 +8,8 @@
 //  sincos_deg(deg): any finite angle in degrees: reduced by a multiple of 90 degrees in degrees
 //    (exact below 2^52), so 90, 180, 270 give exact 0 and +-1. NaN, infinite and huge: libm.
 //  atan2_rad(y, x): atan2 from a rational atan (Cephes atan.c), with atan2's quadrants.
+//  sincos_small2, sincos_deg2, detail::atan_rational2: two angles at once (a vehicle's pitch and
+//    roll) in one SSE2 register, the same bits as one at a time (the series are shared templates).
 #pragma once
 #include <cmath>
 #include <numbers>
