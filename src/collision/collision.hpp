@@ -224,7 +224,9 @@ class Detector {
   std::vector<std::pair<uint32_t, uint32_t>> pairs_;
   PairCache moving_;  // the moving bodies' broad phase, kept across ticks
   std::vector<float> fixed_x_, fixed_y_, fixed_r_;  // fixed objects' test circles (m)
-  size_t fixed_indexed_ = static_cast<size_t>(-1);
+  // The grid build (world::FixedGrid::generation) fixed_x_ ... and near_ were taken from (was:
+  // the object count, which missed a grid built again over as many objects).
+  uint64_t fixed_generation_ = std::numeric_limits<uint64_t>::max();
   // The fixed objects near each entity slot (fixed_contacts): the grid's listings
   // (FixedGrid::query_listed) for a box around its swept box, grown by kNearMarginM plus half
   // the box's size, kept while its swept box stays inside and the grid is the same build; the
@@ -240,8 +242,7 @@ class Detector {
     uint32_t n = 0;
     uint32_t listed[kNearListed] = {0, 0, 0};
   };
-  std::vector<FixedNear> near_;  // by entity slot
-  uint64_t near_generation_ = 0;  // the grid build near_ holds listings of
+  std::vector<FixedNear> near_;  // by entity slot, listings of build fixed_generation_
   IdRank rank_, fixed_rank_;
   int64_t ranked_created_ = -1;  // the entity table ranked last (world::Entities::made_since)
   uint64_t ranked_lineage_ = 0;

@@ -364,8 +364,6 @@ void Detector::detect_continuous(const world::World& w) {
   order_.clear();
   start_hpr_.resize(n), prev_hpr_.resize(n), prev_kind_.resize(n, -1), prev_ok_.resize(n, 0);
   yaw_dir_.resize(n), yaw_bits_.resize(n, 0x7fc00000u);
-  if (near_generation_ != w.grid.generation()) near_.clear(), near_generation_ = w.grid.generation();
-  near_.resize(n);
   for (int e = 0; e < n; ++e) {
     if (!ents.active[e]) {
       prev_ok_[e] = 0;
@@ -378,8 +376,10 @@ void Detector::detect_continuous(const world::World& w) {
 
   // Fixed objects: the world's grid (world/fixed_grid.hpp) lists each by its reach; each is
   // tested here by its sphere (or its models' bound, when a tier above the sphere may be asked),
-  // centred where it stood when indexed (x, y do not change; craters only re-seat z).
-  if (fixed_indexed_ != w.fixed.size()) {
+  // centred where it stood when indexed (x, y do not change; craters only re-seat z). Taken
+  // again, with the objects kept near each entity dropped, for every new build of the grid.
+  if (fixed_generation_ != w.grid.generation()) {
+    near_.clear();
     fixed_x_.resize(w.fixed.size()), fixed_y_.resize(w.fixed.size()), fixed_r_.resize(w.fixed.size());
     for (size_t o = 0; o < w.fixed.size(); ++o) {
       const Vec3 c = world::fixed_centre(w, o);
@@ -392,8 +392,9 @@ void Detector::detect_continuous(const world::World& w) {
         for (int mi : k.models) fixed_r_[o] = std::max(fixed_r_[o], static_cast<float>(shapes_[mi].bound_radius * 1.0001 + 1e-3));
       }
     }
-    fixed_indexed_ = w.fixed.size();
+    fixed_generation_ = w.grid.generation();
   }
+  near_.resize(n);
   // One pass over the entities, in ranges on the pool: each entity's sweep and swept box, then
   // its fixed-object tests into its range's lane (check_finite first: the pool rethrows the
   // lowest range's error, so the first bad entity in index order is named, as on one thread).

@@ -38,6 +38,10 @@ class Gridsquares {
   int col(double x) const { return std::clamp(static_cast<int>(x / cell_), 0, cols_ - 1); }
   int row(double y) const { return std::clamp(static_cast<int>(y / cell_), 0, rows_ - 1); }
   int cell_of(double x, double y) const { return row(y) * cols_ + col(x); }
+  // Whether the item's reach square overlaps the box [lo, hi] (the box queries' test).
+  static bool overlaps(const GridItem& it, float lox, float loy, float hix, float hiy) {
+    return !(it.x + it.r < lox || it.x - it.r > hix || it.y + it.r < loy || it.y - it.r > hiy);
+  }
 
  protected:
   int cols_ = 0, rows_ = 0;
@@ -93,10 +97,6 @@ class FixedGrid : public Gridsquares {
       }
   }
   const GridItem& listing(uint32_t k) const { return items_[k]; }
-  // Whether the item's reach square overlaps the box (query's test).
-  static bool overlaps(const GridItem& it, float lox, float loy, float hix, float hiy) {
-    return !(it.x + it.r < lox || it.x - it.r > hix || it.y + it.r < loy || it.y - it.r > hiy);
-  }
   // Distinct for every build of any grid in the process (a copy keeps its original's).
   uint64_t generation() const { return generation_; }
 
@@ -130,7 +130,7 @@ class FixedBrute : public Gridsquares {
   template <class F>
   void query(float lox, float loy, float hix, float hiy, F&& f) const {
     for (const GridItem& it : items_)
-      if (!(it.x + it.r < lox || it.x - it.r > hix || it.y + it.r < loy || it.y - it.r > hiy)) f(static_cast<int>(it.id), it.r);
+      if (overlaps(it, lox, loy, hix, hiy)) f(static_cast<int>(it.id), it.r);
   }
 
  private:
