@@ -65,9 +65,7 @@ TOOL=multisite
 source "$ROOT/scripts/netns_lib.sh"
 netns_preflight
 command -v smcrouted >/dev/null || skip "smcroute is not installed (scripts/install-deps.sh)"
-# smcrouted only asks the kernel to forward; a kernel built without IPv4 multicast routing
-# (CONFIG_IP_MROUTE: no /proc/net/ip_mr_vif, as on the 6.18 Firecracker guest of 4 Dec) cannot, and
-# smcrouted then rejects every route ("not a known phyint"): no site would hear another.
+# smcrouted only asks the kernel to forward (without it every route is rejected: README).
 [ -e /proc/net/ip_mr_vif ] || skip "this kernel has no IPv4 multicast routing (CONFIG_IP_MROUTE; no /proc/net/ip_mr_vif): smcrouted cannot forward between sites"
 
 P="nms$(( $$ % 100000 ))"          # per-run prefix of every namespace
