@@ -11,10 +11,13 @@
 // threads), each runs `warm` ticks untimed (the first builds shapes and grids), then they take
 // turns, one tick each, for `ticks` rounds, every tick timed alone (steady_clock): the machine's
 // other load falls on all four alike. Reported: the median (and the minimum) wall ms per tick,
-// and the median CPU ms the process spent in the tick (all its threads; on a machine shared
-// with other work, wall time includes waiting for a core). The
+// and the median CPU ms spent in the tick: a 1-thread node's own thread; a 2-thread node's, the
+// whole process's (its worker, but also the other 2-thread node's worker spinning; on a machine
+// shared with other work, wall time includes waiting for a core). The
 // 1- and 2-thread runs of each kind run the same ticks (their event logs are compared: they must
-// be the same bytes, else the bench stops). Past 32,767 entities the node numbers its entities
+// be the same bytes, else the bench stops). Before and after, the machine is probed (MachineProbe:
+// cache and memory latency, whether two threads run as fast as one) and that is printed, and
+// written as two comment lines at the end of the CSV. Past 32,767 entities the node numbers its entities
 // under several DIS applications (node/ownership.hpp), so the whole tick is measured at every N.
 // Usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T] [--stages]]
 //   default N = 500 ... 200,000 -> bench/results/tick_scaling.csv; --quick: 500 and 5,000, no CSV;
@@ -29,11 +32,16 @@
 //   dynamics, collision and response, apply and events, net out, the rest.
 //   --prewake 0: no wake-up of the pool ahead of each tick (default 1: as a paced node, run.cpp):
 //   the tick's thread wakes the sleeping worker itself (~11 us at 500 vehicles).
+//   --pin C: the tick's thread runs on CPU C only (the pool's workers on any): on this machine
+//   the two CPUs are not alike (MachineProbe below), so an A/B compares like with like.
+#include <pthread.h>
+#include <sched.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <ctime>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -42,6 +50,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/jobs.hpp"
@@ -74,6 +83,20 @@ struct StageClock {
   }
 };
 
+// Ticks whose thread was on each CPU at their end (sched_getcpu), over the whole run.
+constexpr int kCpus = 64;
+long ticks_on_cpu[kCpus] = {};
+
+std::string cpus_used() {
+  std::string s;
+  long all = 0;
+  for (long n : ticks_on_cpu) all += n;
+  for (int c = 0; c < kCpus; ++c)
+    if (ticks_on_cpu[c]) s += (s.empty() ? "" : ", ") + ("cpu" + std::to_string(c)) + " " +
+                              std::to_string(static_cast<int>(100.0 * ticks_on_cpu[c] / all + 0.5)) + " %";
+  return "the tick's thread ended its ticks on " + s;
+}
+
 // One node: its event log (a file), Simulation, and, with net, an offline bridge.
 struct Node {
   std::filesystem::path file;
@@ -93,7 +116,7 @@ struct Node {
       bridge->attach();
     }
   }
-  std::vector<double> cpu_ms;  // the process's CPU time over the tick (every thread of it)
+  std::vector<double> cpu_ms;  // CPU time over the tick: the tick's thread alone, or (with a pool) the process's
   std::unique_ptr<StageClock> stages;
   // Times the tick's stages from here on (after the bridge attached its on_tick, which it wraps).
   void time_stages() {
@@ -117,17 +140,19 @@ struct Node {
       while (std::chrono::steady_clock::now() < until) {
       }
     }
-    const double c0 = cpu_now_ms();
+    const bool alone = !sim.jobs();
+    const double c0 = cpu_now_ms(alone);
     const auto t0 = std::chrono::steady_clock::now();
     if (stages) stages->begin();
     sim.tick();
     if (stages) stages->mark(5);
+    ++ticks_on_cpu[std::clamp(sched_getcpu(), 0, kCpus - 1)];
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    cpu_ms.push_back(cpu_now_ms() - c0);
+    cpu_ms.push_back(cpu_now_ms(alone) - c0);
   }
-  static double cpu_now_ms() {
+  static double cpu_now_ms(bool this_thread) {
     timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    clock_gettime(this_thread ? CLOCK_THREAD_CPUTIME_ID : CLOCK_PROCESS_CPUTIME_ID, &ts);
     return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
   }
   static double median_of(std::vector<double> v) {
@@ -149,6 +174,96 @@ struct Node {
   }
 };
 
+// The machine at the time of a run, printed beside the figures. This 2-core guest's two CPUs are
+// often not alike, and which one is slower changes (the host moves them): on 4 Dec 17:30 UTC the
+// same 500-vehicle tick on one thread took 0.130 ms pinned to cpu0 and 0.144-0.168 ms pinned to
+// cpu1, whose loads from memory were then about 30 ns slower (a compute chain ran as fast on
+// both); an hour later cpu0 was the slower. So a run depends on where the tick's thread runs
+// (--pin chooses it; the bench reports where it ran). Probed on each CPU in turn: ns per load of
+// a dependent random walk over 1 MiB (the core's own cache) and 64 MiB (memory); and a dependent
+// multiply chain on two threads at once against one (1.0 when both cores are ours).
+volatile uint64_t probe_sink;  // keeps the probes' loops
+
+bool pin_to(int cpu) {  // the calling thread to one CPU
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  CPU_SET(cpu, &set);
+  return pthread_setaffinity_np(pthread_self(), sizeof set, &set) == 0;
+}
+
+struct MachineProbe {
+  struct Cpu {
+    int cpu;
+    double walk1_ns, walk64_ns;
+  };
+  std::vector<Cpu> cpus;
+  double two_over_one = 0;
+  static double walk_ns(size_t mib) {
+    const size_t lines = mib * 1024 * 1024 / 64;  // one 8-byte link a 64-byte line
+    std::vector<uint64_t> a(lines * 8);
+    std::vector<uint32_t> order(lines);
+    for (size_t i = 0; i < lines; ++i) order[i] = static_cast<uint32_t>(i);
+    uint64_t r = 88172645463325252ull;  // xorshift: one random cycle through every line
+    for (size_t i = lines - 1; i > 0; --i) {
+      r ^= r << 13, r ^= r >> 7, r ^= r << 17;
+      std::swap(order[i], order[r % (i + 1)]);
+    }
+    for (size_t i = 0; i < lines; ++i) a[size_t{order[i]} * 8] = size_t{order[(i + 1) % lines]} * 8;
+    uint64_t j = 0;
+    for (size_t i = 0; i < lines; ++i) j = a[j];  // warm: every line once
+    constexpr int kLoads = 1000000;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < kLoads; ++i) j = a[j];
+    const double ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count() / kLoads;
+    probe_sink = j;
+    return ns;
+  }
+  static double chain_ms() {
+    const auto t0 = std::chrono::steady_clock::now();
+    uint64_t x = 1;
+    for (int i = 0; i < 10000000; ++i) x = x * 6364136223846793005ull + 1442695040888963407ull;
+    probe_sink = x;
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
+  static MachineProbe take() {
+    MachineProbe m;
+    cpu_set_t allowed;
+    CPU_ZERO(&allowed);
+    if (sched_getaffinity(0, sizeof allowed, &allowed) != 0) return m;
+    for (int c = 0; c < CPU_SETSIZE && m.cpus.size() < 8; ++c)
+      if (CPU_ISSET(c, &allowed)) {
+        Cpu r{c, -1, -1};
+        std::thread([&] {
+          if (pin_to(c)) r.walk1_ns = walk_ns(1), r.walk64_ns = walk_ns(64);
+        }).join();
+        if (r.walk1_ns >= 0) m.cpus.push_back(r);
+      }
+    if (m.cpus.size() < 2) return m;
+    // The chain on the first CPU alone, then on the first two at once (each thread pinned: a new
+    // thread unpinned may start on its parent's CPU and share it for a while).
+    auto chain_on = [](int cpu, double& ms) {
+      return std::thread([cpu, &ms] { ms = pin_to(cpu) ? chain_ms() : -1; });
+    };
+    double one = 0, mine = 0, other = 0;
+    chain_on(m.cpus[0].cpu, one).join();
+    std::thread a = chain_on(m.cpus[0].cpu, mine), b = chain_on(m.cpus[1].cpu, other);
+    a.join(), b.join();
+    m.two_over_one = std::max(mine, other) / one;
+    return m;
+  }
+  std::string text() const {
+    std::string s = "random walk ns a load (1 MiB, 64 MiB):";
+    char b[96];
+    for (const Cpu& c : cpus) {
+      std::snprintf(b, sizeof b, " cpu%d %.1f, %.1f;", c.cpu, c.walk1_ns, c.walk64_ns);
+      s += b;
+    }
+    if (two_over_one > 0) std::snprintf(b, sizeof b, " two threads' chain %.2fx one's", two_over_one);
+    else std::snprintf(b, sizeof b, " one CPU");
+    return s + b;
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -156,6 +271,7 @@ int main(int argc, char** argv) {
   std::string csv = std::string(NPSNET_SOURCE_DIR) + "/bench/results/tick_scaling.csv";
   int one_net = -1, one_threads = 1, ticks_override = 0;
   bool some_n = false, csv_given = false, prewake = true, stages = false;
+  int pin = -1;  // --pin C: the tick's thread on CPU C (the pools' workers keep every CPU)
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) ns = {500, 5000}, csv.clear();
     else if (!std::strcmp(argv[i], "--one") && i + 1 < argc &&
@@ -166,6 +282,8 @@ int main(int argc, char** argv) {
     }
     else if (!std::strcmp(argv[i], "--prewake") && i + 1 < argc) prewake = std::atoi(argv[++i]) != 0;
     else if (!std::strcmp(argv[i], "--stages")) stages = true;
+    else if (!std::strcmp(argv[i], "--pin") && i + 1 < argc && (pin = std::atoi(argv[++i])) >= 0) {
+    }
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i], csv_given = true;
     else if (!std::strcmp(argv[i], "--n") && i + 1 < argc) {
       some_n = true;
@@ -173,11 +291,22 @@ int main(int argc, char** argv) {
       std::stringstream ss(argv[++i]);
       for (std::string t; std::getline(ss, t, ',');) ns.push_back(std::stoi(t));
     } else {
-      std::fprintf(stderr, "usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T] [--stages]] [--prewake 0|1]\n");
+      std::fprintf(stderr, "usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T] [--stages]] [--prewake 0|1] [--pin CPU]\n");
       return 2;
     }
   }
   if (some_n && !csv_given) csv.clear();
+  cpu_set_t every_cpu;  // the pools are made with every CPU allowed, then the tick's thread is pinned
+  CPU_ZERO(&every_cpu);
+  sched_getaffinity(0, sizeof every_cpu, &every_cpu);
+  auto pin_tick_thread = [&](bool on) {
+    if (pin < 0) return;
+    if (!on) sched_setaffinity(0, sizeof every_cpu, &every_cpu);
+    else if (!pin_to(pin)) {
+      std::fprintf(stderr, "--pin %d: cannot run on that CPU\n", pin);
+      std::exit(2);
+    }
+  };
   const world::Scenario base = world::load_scenario(std::string(NPSNET_SOURCE_DIR) + "/scenarios/default.toml");
   std::ofstream out;
   if (!csv.empty()) {
@@ -185,6 +314,8 @@ int main(int argc, char** argv) {
     out << "n,entities,warm_ticks,ticks,net_ms_1t,net_ms_2t,nonet_ms_1t,nonet_ms_2t,net_min_ms_1t,net_min_ms_2t,"
            "nonet_min_ms_1t,nonet_min_ms_2t,net_cpu_ms_1t,net_cpu_ms_2t,nonet_cpu_ms_1t,nonet_cpu_ms_2t,collisions\n";
   }
+  const MachineProbe before = MachineProbe::take();
+  std::printf("machine before: %s\n", before.text().c_str());
   std::printf("%8s %9s %6s | %-27s | %-27s | %s\n", "N", "entities", "ticks", "whole tick ms: 1t, 2t, x",
               "net off ms: 1t, 2t, x", "collisions");
   for (int n : ns) {
@@ -203,7 +334,9 @@ int main(int argc, char** argv) {
                                                : 30;
     const int warm = n <= 50000 ? 5 : 3;
     if (one_net >= 0) {  // one node alone (profiling)
+      pin_tick_thread(false);
       Node nd(w, sc, one_threads, one_net == 1, "-one.jsonl");
+      pin_tick_thread(true);
       for (int i = 0; i < warm; ++i) nd.sim.tick();
       if (stages) nd.time_stages();
       for (int i = 0; i < ticks; ++i) nd.timed_tick(prewake);
@@ -219,8 +352,10 @@ int main(int argc, char** argv) {
       continue;
     }
     std::vector<std::unique_ptr<Node>> nodes;  // [net off 1t, net off 2t, net 1t, net 2t]
+    pin_tick_thread(false);
     for (int k = 0; k < 4; ++k)
       nodes.push_back(std::make_unique<Node>(w, sc, 1 + k % 2, k >= 2, "-" + std::to_string(k) + ".jsonl"));
+    pin_tick_thread(true);
     for (auto& nd : nodes)
       for (int i = 0; i < warm; ++i) nd->sim.tick();
     for (int i = 0; i < ticks; ++i)
@@ -243,5 +378,11 @@ int main(int argc, char** argv) {
           << mn[1] << ',' << cell(cpu[2]) << ',' << cell(cpu[3]) << ',' << cpu[0] << ',' << cpu[1] << ','
           << nodes[0]->collisions() << std::endl;
   }
+  pin_tick_thread(false);
+  const MachineProbe after = MachineProbe::take();
+  std::printf("%s\nmachine after: %s\n", cpus_used().c_str(), after.text().c_str());
+  if (out)
+    out << "# machine before: " << before.text() << "\n# " << cpus_used() << "\n# machine after: " << after.text()
+        << '\n';
   return 0;
 }

@@ -44,14 +44,16 @@ void Jobs::wake() {
   }
 }
 
-void Jobs::claim_chunks(uint32_t generation) {
+void Jobs::claim_chunks(uint32_t generation, bool from_back) {
   uint64_t s = state_.load(std::memory_order_acquire);
   for (;;) {
     if (generation_of(s) != generation) return;  // that job is over; another began
-    const uint32_t k = static_cast<uint32_t>(s >> 16) & 0xffff, c = static_cast<uint32_t>(s) & 0xffff;
-    if (c >= k) return;  // every chunk is taken
-    if (!state_.compare_exchange_weak(s, s + 1, std::memory_order_acq_rel, std::memory_order_acquire)) continue;
+    const uint32_t end = static_cast<uint32_t>(s >> 16) & 0xffff, begin = static_cast<uint32_t>(s) & 0xffff;
+    if (begin >= end) return;  // every chunk is taken
+    const uint64_t claimed = from_back ? s - (uint64_t{1} << 16) : s + 1;
+    if (!state_.compare_exchange_weak(s, claimed, std::memory_order_acq_rel, std::memory_order_acquire)) continue;
     // Chunk c is ours: the job's fields stay as they are until it is done.
+    const uint32_t c = from_back ? end - 1 : begin;
     try {
       fn_(ctx_, static_cast<int>(c), chunk_begin(count_, static_cast<int>(c), k_),
           chunk_begin(count_, static_cast<int>(c) + 1, k_));
@@ -87,7 +89,7 @@ void Jobs::work() {
       }
     }
     seen = generation_of(state_.load(std::memory_order_acquire));
-    claim_chunks(seen);
+    claim_chunks(seen, true);
   }
 }
 
@@ -101,7 +103,7 @@ void Jobs::run(size_t count, int k, Call fn, void* ctx) {
     std::lock_guard<std::mutex> lock(mu_);
     wake_.notify_all();
   }
-  claim_chunks(g);
+  claim_chunks(g, false);
   for (int polls = 0; finished_.load(std::memory_order_acquire) < k; ++polls) {
     if (polls < 4096) cpu_relax();
     else std::this_thread::yield();  // a worker holding a chunk was descheduled

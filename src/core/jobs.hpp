@@ -9,7 +9,9 @@
 //    (c + 1) / k), and calls fn(c, begin, end) once for each, returning when all are done.
 //    Chunks are claimed, not assigned: the caller starts on them at once and a worker takes the
 //    next unclaimed one when it arrives, so a stage never waits for a worker to wake (a short
-//    stage may run wholly on the caller). Which thread runs a chunk changes nothing: fn's
+//    stage may run wholly on the caller). The caller claims from the first chunk up, workers
+//    from the last down: from stage to stage and tick to tick the same items tend to stay on the
+//    same thread, and their data in that core's cache. Which thread runs a chunk changes nothing: fn's
 //    outputs are keyed by the chunk index c. The split depends only on count, grain, per_thread
 //    and threads(): a stage whose chunks write only their own outputs (per-chunk buffers, or the
 //    slots of their own range), merged afterwards in chunk order, gives the same bytes as one
@@ -89,9 +91,10 @@ class Jobs {
   }
   void run(size_t count, int k, Call fn, void* ctx);
   void work();
-  void claim_chunks(uint32_t generation);
-  // state_: generation (32 bits) | chunks of the job (16) | next chunk to claim (16). A claim is
-  // one compare-exchange; a claim at or past the job's chunk count ends the claimer's part.
+  void claim_chunks(uint32_t generation, bool from_back);
+  // state_: generation (32 bits) | end of the unclaimed chunks (16) | their start (16): the caller
+  // claims the start, workers the one before the end. A claim is one compare-exchange; when
+  // start meets end every chunk is taken and the claimer's part is over.
   static uint32_t generation_of(uint64_t s) { return static_cast<uint32_t>(s >> 32); }
 
   int threads_ = 1;

@@ -5,8 +5,11 @@
 // the crowd collides with itself and with trees.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "core/jobs.hpp"
 #include "node/simulation.hpp"
@@ -163,4 +166,26 @@ TEST(Threads, JobsSplitIntoFixedRangesAndRethrowTheFirstError) {
   core::Jobs single(1);
   single.for_chunks(100, 1, [&](int c, size_t b, size_t e) { sum += c + static_cast<int>(e - b); });
   EXPECT_EQ(sum, 100);
+}
+
+// Who runs which chunk (core/jobs.hpp): the caller claims from the first chunk up, the workers
+// from the last down, so with one worker the caller's chunks are always a prefix of the job and
+// the worker's the rest (the same items stay on the same thread from stage to stage). Each chunk
+// sleeps a little so that the worker, woken by the job, takes part in most rounds.
+TEST(Threads, CallerClaimsFromTheFrontTheWorkerFromTheBack) {
+  core::Jobs jobs(2);
+  const auto caller = std::this_thread::get_id();
+  int rounds_shared = 0;
+  for (int round = 0; round < 20; ++round) {
+    std::vector<int> on_caller(8, -1);
+    jobs.for_chunks(8, 1, [&](int c, size_t, size_t) {
+      on_caller[c] = std::this_thread::get_id() == caller;
+      std::this_thread::sleep_for(std::chrono::microseconds(300));
+    }, 4);
+    const auto first_worker = std::find(on_caller.begin(), on_caller.end(), 0);
+    EXPECT_TRUE(std::all_of(on_caller.begin(), first_worker, [](int v) { return v == 1; })) << "round " << round;
+    EXPECT_TRUE(std::all_of(first_worker, on_caller.end(), [](int v) { return v == 0; })) << "round " << round;
+    rounds_shared += first_worker != on_caller.end() && first_worker != on_caller.begin();
+  }
+  EXPECT_GT(rounds_shared, 0);  // the worker took part (each round lasts 8 x 300 us at most)
 }
