@@ -87,10 +87,11 @@ void eta_series(double eta, FrameMemo::Terms& t) {
   for (int j = 1; j < 6; ++j) t.a[j] = t.a[j - 1] * c + t.b[j - 1] * s, t.b[j] = t.b[j - 1] * c + t.a[j - 1] * s;
 }
 
-// Forward TM about the central meridian with no offsets: (lat, dlon) rad -> (x, y) m, and the
-// grid convergence gamma (rad, the azimuth of grid north measured clockwise from true north).
+// Forward TM about the central meridian with no offsets: (lat, dlon) rad -> (x, y) m, the grid
+// convergence gamma (rad, the azimuth of grid north measured clockwise from true north) and the
+// point scale k (grid metres per metre on the ellipsoid; Karney 2011, eq. 13-14 and 25-26).
 struct TmRaw {
-  double x, y, gamma;
+  double x, y, gamma, k;
 };
 
 TmRaw tm_forward_raw(double lat, double dlon) {
@@ -115,7 +116,11 @@ TmRaw tm_forward_raw(double lat, double dlon) {
   }
   const double gamma1 = std::atan(std::tan(xip) * std::tanh(etap));
   const double gamma = gamma1 + std::atan2(q, p);
-  return {c.a_rect * eta, c.a_rect * xi, gamma};
+  // k of the conformal sphere's TM, sqrt(1 - e^2 sin^2 lat) sqrt(1 + tau^2) / hypot(taup, cos
+  // dlon) = sqrt(1 + (1 - e^2) tau^2) / hypot(taup, cos dlon), times the series' (A / a) |p - i q|.
+  const double k = std::sqrt(1.0 + (1.0 - kWgs84E2) * tau * tau) / std::hypot(taup, cl) *
+                   (c.a_rect / kWgs84A) * std::hypot(p, q);
+  return {c.a_rect * eta, c.a_rect * xi, gamma, k};
 }
 
 // Inverse TM (no offsets) from xi = y / A, eta = x / A and their series terms -> (lat, dlon) rad.
@@ -187,6 +192,29 @@ Vec3 dis_euler(double conv_deg, const Mat3& ned, double heading_deg, double pitc
   const Mat3 body_to_ned = zyx_rotation(true_heading, deg2rad(pitch_deg), deg2rad(roll_deg));
   const Mat3 body_to_ecef = ned * body_to_ned;
   return zyx_angles(body_to_ecef);
+}
+
+// ECEF metres per local metre (columns: local x, y, z) at latitude and longitude given by their
+// sines and cosines, height h, convergence gamma (rad) and scale k: a grid metre along local +y
+// is 1 / k metres on the ellipsoid at azimuth gamma, along +x at gamma + 90 deg, and a metre on
+// the ellipsoid is (M + h) / M (north) and (N + h) / N (east) metres at height h.
+Mat3 jacobian_of(double sp, double cp, double sl, double cl, double h, double gamma, double k) {
+  const double w2 = 1.0 - kWgs84E2 * sp * sp;
+  const double n = kWgs84A / std::sqrt(w2), m = n * (1.0 - kWgs84E2) / w2;  // prime vertical, meridian radii
+  const Vec3 north(-sp * cl, -sp * sl, cp), east(-sl, cl, 0.0);
+  const Vec3 dn = north * ((m + h) / (m * k)), de = east * ((n + h) / (n * k));
+  const double sg = std::sin(gamma), cg = std::cos(gamma);
+  Mat3 j;
+  j.col(0) = de * cg - dn * sg;
+  j.col(1) = dn * cg + de * sg;
+  j.col(2) = Vec3(cp * cl, cp * sl, sp);
+  return j;
+}
+
+// The forward TM of a geodetic point about tm's central meridian (its convergence and scale).
+TmRaw forward_at(const TransverseMercator& tm, const Geodetic& g) {
+  const double dlon = std::remainder(g.lon_deg - tm.lon0(), 360.0);
+  return tm_forward_raw(deg2rad(g.lat_deg), deg2rad(dlon));
 }
 
 }  // namespace
@@ -293,9 +321,12 @@ Vec3 LocalFrame::to_local(const Geodetic& g) const {
   return {xy.x(), xy.y(), g.h_m};
 }
 
-double LocalFrame::convergence_deg(const Geodetic& g) const {
-  const double dlon = std::remainder(g.lon_deg - tm_.lon0(), 360.0);
-  return rad2deg(tm_forward_raw(deg2rad(g.lat_deg), deg2rad(dlon)).gamma);
+double LocalFrame::convergence_deg(const Geodetic& g) const { return rad2deg(forward_at(tm_, g).gamma); }
+
+Mat3 LocalFrame::jacobian(const Geodetic& g) const {
+  const double lat = deg2rad(g.lat_deg), lon = deg2rad(g.lon_deg);
+  const TmRaw r = forward_at(tm_, g);
+  return jacobian_of(std::sin(lat), std::cos(lat), std::sin(lon), std::cos(lon), g.h_m, r.gamma, r.k);
 }
 
 Vec3 LocalFrame::to_dis_euler(const Vec3& local_pos, double heading_deg, double pitch_deg,
@@ -350,10 +381,24 @@ Vec3 FrameMemo::geodetic_to_ecef(const Geodetic& g) {
   return ecef_of(la.s, la.c, lo.s, lo.c, g.h_m);
 }
 
+const FrameMemo::Grid& FrameMemo::grid(const Geodetic& g) {
+  return fwd_.get(Key2{std::bit_cast<std::uint64_t>(g.lat_deg), std::bit_cast<std::uint64_t>(g.lon_deg)}, [&](Grid& v) {
+    const TmRaw r = forward_at(f_.tm_, g);
+    v = {r.gamma, r.k};
+  });
+}
+
 Vec3 FrameMemo::to_dis_euler(const Geodetic& g, double heading_deg, double pitch_deg, double roll_deg) {
   const SinCos& la = sincos_deg(lat_, g.lat_deg);
   const SinCos& lo = sincos_deg(lon_, g.lon_deg);
-  return dis_euler(f_.convergence_deg(g), ned_to_ecef(la.s, la.c, lo.s, lo.c), heading_deg, pitch_deg, roll_deg);
+  return dis_euler(rad2deg(grid(g).gamma), ned_to_ecef(la.s, la.c, lo.s, lo.c), heading_deg, pitch_deg, roll_deg);
+}
+
+Mat3 FrameMemo::jacobian(const Geodetic& g) {
+  const SinCos& la = sincos_deg(lat_, g.lat_deg);
+  const SinCos& lo = sincos_deg(lon_, g.lon_deg);
+  const Grid& r = grid(g);
+  return jacobian_of(la.s, la.c, lo.s, lo.c, g.h_m, r.gamma, r.k);
 }
 
 }  // namespace npsnet::geo

@@ -68,6 +68,9 @@ class LocalFrame {
   // Grid convergence at g (deg): the azimuth of local +y (grid north) clockwise from true
   // north. A local (grid) heading plus this is the true heading.
   double convergence_deg(const Geodetic& g) const;
+  // The derivative of to_ecef at g = to_geodetic(local): ECEF metres per local metre, columns
+  // local x, y, z (from the convergence and the TM point scale; exact but for rounding).
+  Mat3 jacobian(const Geodetic& g) const;
   const TransverseMercator& projection() const { return tm_; }
 
  private:
@@ -75,14 +78,15 @@ class LocalFrame {
   TransverseMercator tm_;
 };
 
-// LocalFrame's to_geodetic, to_ecef and to_dis_euler, bit for bit, for a run of points that
-// share coordinates (issue 13: an exact dead-reckoning test turns p, p + velocity and p + each
-// axis into ECEF: p + x keeps p's northing, p + y its easting, p + z both). It keeps the
-// transverse Mercator inverse's series terms of the last three northings (sin and cos of 2j xi)
-// and eastings (sinh and cosh of 2j eta), the last two inverses, and the last two latitudes' and
-// longitudes' sines and cosines, each keyed by the bits of its argument, so what it returns is a
-// function of the point's bits only (the same libm calls on the same arguments, the same
-// operations after). Not shared between threads; small enough for the stack.
+// LocalFrame's to_geodetic, to_ecef, to_dis_euler and jacobian, bit for bit, for a run of points
+// that share coordinates (issue 13: an exact dead-reckoning test turns p into ECEF and DIS angles
+// and takes the Jacobian there; points that share p's northing, easting or both reuse its
+// terms). It keeps the transverse Mercator inverse's series terms of the last three northings
+// (sin and cos of 2j xi) and eastings (sinh and cosh of 2j eta), the last two inverses, the last
+// two latitudes' and longitudes' sines and cosines, and the last two points' convergence and
+// scale, each keyed by the bits of its argument, so what it returns is a function of the point's
+// bits only (the same libm calls on the same arguments, the same operations after). Not shared
+// between threads; small enough for the stack.
 class FrameMemo {
  public:
   explicit FrameMemo(const LocalFrame& f) : f_(f) {}
@@ -90,6 +94,7 @@ class FrameMemo {
   Vec3 to_ecef(const Vec3& local) { return geodetic_to_ecef(to_geodetic(local)); }
   Vec3 geodetic_to_ecef(const Geodetic& g);
   Vec3 to_dis_euler(const Geodetic& g, double heading_deg, double pitch_deg, double roll_deg);
+  Mat3 jacobian(const Geodetic& g);
   // Series terms (of one coordinate) and whole inverses computed so far (tests).
   int terms_computed() const { return xi_.made + eta_.made; }
   int inverses_computed() const { return inv_.made; }
@@ -108,6 +113,9 @@ class FrameMemo {
   };
   struct SinCos {
     double s = 0, c = 0;
+  };
+  struct Grid {  // the forward TM's convergence (rad) and scale at a latitude and longitude
+    double gamma = 0, k = 1;
   };
   // The values of the last N keys; the oldest is replaced.
   template <int N, class K, class V>
@@ -131,6 +139,8 @@ class FrameMemo {
   Kept<3, std::uint64_t, Terms> xi_, eta_;
   Kept<2, Key2, LatLon> inv_;
   Kept<2, std::uint64_t, SinCos> lat_, lon_;
+  Kept<2, Key2, Grid> fwd_;
+  const Grid& grid(const Geodetic& g);
 };
 
 }  // namespace npsnet::geo

@@ -47,14 +47,12 @@ void dr_rebase(const net::KinematicState& s, const net::DrPublisher& pub, double
 }
 
 net::KinematicState exact_state(const world::World& w, int e, DrAnchor& a) {
-  // Five points into ECEF: p, p + velocity, then p + z (p's inverse, kept), p + x (p's northing
-  // terms), p + y (its easting terms): geo::FrameMemo computes each shared part once.
+  // p into ECEF and DIS angles, and the Jacobian there (its velocity's too): geo::FrameMemo
+  // computes p's inverse, sines and convergence once.
   geo::FrameMemo memo(w.terrain.frame());
   const net::KinematicState s = entity_truth(w, e, memo);
-  const Vec3 p = w.ents.pos[e], pe(s.position);
-  a.jac.col(2) = memo.to_ecef(p + Vec3::UnitZ()) - pe;
-  a.jac.col(0) = memo.to_ecef(p + Vec3::UnitX()) - pe;
-  a.jac.col(1) = memo.to_ecef(p + Vec3::UnitY()) - pe;
+  const Vec3 p = w.ents.pos[e];
+  a.jac = memo.jacobian(memo.to_geodetic(p));
   a.p = p;
   a.heading = w.ents.heading_deg[e], a.pitch = w.ents.pitch_deg[e], a.roll = w.ents.roll_deg[e];
   a.valid = false;  // until dr_rebase

@@ -8,12 +8,12 @@
 //
 // How: at every exact test of a vehicle (exact_state()) we keep an anchor: its local position p_c
 // (m), the exact position error vector E_c = truth - believed (ECEF m), the Jacobian J of the
-// local -> ECEF map F at p_c (finite differences over 1 m), the exact orientation error theta_c
+// local -> ECEF map F at p_c (geo::LocalFrame::jacobian), the exact orientation error theta_c
 // (rad) and its heading, pitch, roll (deg). Later, at local position p (d = p - p_c) and time t:
 //  * position: |F(p) - B(t)| <= |E_c + J d - (B(t) - B(t_c))| + K |d|^2 / 2 + K |d| + eps,
 //    B = the believed (dead-reckoned, RVW) ECEF position, K = kCurvaturePerM, a bound on F's
 //    second derivative (the Earth's curvature ~1.6e-7 /m and the projection's, with a margin of
-//    about 20; the K |d| term covers the finite-difference Jacobian's own error);
+//    about 20; the K |d| term, kept from when J was a 1 m finite difference, is now margin);
 //  * orientation (the angle between rotations is a metric, invariant on both sides):
 //    err(t) <= theta_c + |w| (t - t_c) + |dheading| + |dpitch| + |droll| + Kf |d| + eps,
 //    w = the sent body rates (the believed orientation turns by |w| dt), Kf = kFrameTurnPerM

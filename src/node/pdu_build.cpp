@@ -35,7 +35,7 @@ net::KinematicState entity_truth(const world::World& w, int e, geo::FrameMemo& m
   s.position = ev(pe);
   const Vec3 eu = memo.to_dis_euler(g, w.ents.heading_deg[e], w.ents.pitch_deg[e], w.ents.roll_deg[e]);
   s.orientation = {eu.x(), eu.y(), eu.z()};
-  s.velocity = ev(memo.to_ecef(p + w.ents.vel[e]) - pe);
+  s.velocity = ev(memo.jacobian(g) * w.ents.vel[e]);  // the derivative (was a 1 s difference)
   return s;
 }
 

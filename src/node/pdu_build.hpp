@@ -13,11 +13,12 @@
 
 namespace npsnet::node {
 
-// Entity e's true state: ECEF position, ECEF velocity, DIS Euler angles (acceleration and
-// angular velocity zero; the publisher fills them).
+// Entity e's true state: ECEF position, ECEF velocity (the local velocity through the frame's
+// Jacobian at e's position), DIS Euler angles (acceleration and angular velocity zero; the
+// publisher fills them).
 net::KinematicState entity_truth(const world::World& w, int e);
-// The same through `memo` (the same bits): the points it turns into ECEF (e's position, position
-// + velocity) are kept there for the caller's next ones (exact_state's finite differences).
+// The same through `memo` (the same bits): e's position's inverse, sines and convergence are
+// kept there for the caller (exact_state's Jacobian).
 net::KinematicState entity_truth(const world::World& w, int e, geo::FrameMemo& memo);
 
 // The one Entity State fill of a local vehicle: id, force, kind's DIS type (also as the

@@ -31,7 +31,7 @@ constexpr double kAnnounceGapS = 0.5;
 // Exact DR tests made ahead per pool round (with worker threads): what the cap leaves room for
 // (plus the first deferred; nearly every vehicle the bound cannot clear is sent: about 129 tests
 // a tick for the 128 sent in a 20,000-vehicle crowd), at least kMinTestBatch, at most
-// kMaxTestBatch; at least kTestGrain tests a thread (one test: about 36,000 instructions).
+// kMaxTestBatch; at least kTestGrain tests a thread (one test: about 6,300 instructions).
 constexpr size_t kMinTestBatch = 16, kMaxTestBatch = 512, kTestGrain = 4;
 
 double wrap180(double d) {

@@ -1,6 +1,6 @@
-// geo::FrameMemo: LocalFrame's to_geodetic, to_ecef and to_dis_euler through the kept series
+// geo::FrameMemo: LocalFrame's to_geodetic, to_ecef, to_dis_euler and jacobian through the kept series
 // terms, inverses and sines give the bits of the plain functions, for runs of points that share
-// coordinates (the exact dead-reckoning test's p, p + v, p + z, p + x, p + y) and runs that
+// coordinates (p, p + v, p + z, p + x, p + y) and runs that
 // share only some of them (one coordinate, a latitude but not a longitude, +0 against -0).
 #include <gtest/gtest.h>
 
@@ -32,6 +32,8 @@ void expect_same_as_frame(const LocalFrame& f, FrameMemo& m, const std::vector<V
     ASSERT_TRUE(same_bits(f.to_ecef(q), m.to_ecef(q))) << q.transpose();
     ASSERT_TRUE(same_bits(geodetic_to_ecef(g), m.geodetic_to_ecef(g))) << q.transpose();
     ASSERT_TRUE(same_bits(f.to_dis_euler(g, h, p, r), m.to_dis_euler(g, h, p, r))) << q.transpose();
+    const Mat3 j = f.jacobian(g), jm = m.jacobian(g);
+    ASSERT_EQ(std::memcmp(j.data(), jm.data(), sizeof(double) * 9), 0) << q.transpose();
   }
 }
 }  // namespace

@@ -81,6 +81,9 @@ TEST(DrBound, CurvatureAndFrameTurnBoundsHoldOnTheDefaultWorld) {
     const double lin = (frame.to_ecef(pc + d) - pe - jac * d).norm();
     const double pos_bound = 0.5 * node::kCurvaturePerM * nd * nd + node::kCurvaturePerM * nd;
     EXPECT_LE(lin, pos_bound) << "at " << pc.transpose() << " d " << d.transpose();
+    // The anchors' Jacobian (the derivative, exact_state) needs only the curvature term.
+    const double lin_exact = (frame.to_ecef(pc + d) - pe - frame.jacobian(frame.to_geodetic(pc)) * d).norm();
+    EXPECT_LE(lin_exact, 0.5 * node::kCurvaturePerM * nd * nd + node::kBoundEpsM) << "at " << pc.transpose();
     worst_pos = std::max(worst_pos, lin / pos_bound);
     const double h = ang(rng), p = ang(rng) / 4, r = ang(rng) / 4;
     const Vec3 a = frame.to_dis_euler(pc, h, p, r), b = frame.to_dis_euler(pc + d, h, p, r);
