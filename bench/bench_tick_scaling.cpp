@@ -39,6 +39,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <ctime>
 #include <cstdint>
@@ -180,8 +181,9 @@ struct Node {
 // cpu1, whose loads from memory were then about 30 ns slower (a compute chain ran as fast on
 // both); an hour later cpu0 was the slower. So a run depends on where the tick's thread runs
 // (--pin chooses it; the bench reports where it ran). Probed on each CPU in turn: ns per load of
-// a dependent random walk over 1 MiB (the core's own cache) and 64 MiB (memory); and a dependent
-// multiply chain on two threads at once against one (1.0 when both cores are ours).
+// a dependent random walk over 1 MiB (the core's own cache) and 64 MiB (memory); a dependent
+// multiply chain on two threads at once against one (1.0 when both cores are ours); and the time
+// a cache line takes to pass from one CPU to the other (240-320 ns here on 4 Dec 18:10 UTC).
 volatile uint64_t probe_sink;  // keeps the probes' loops
 
 bool pin_to(int cpu) {  // the calling thread to one CPU
@@ -197,7 +199,25 @@ struct MachineProbe {
     double walk1_ns, walk64_ns;
   };
   std::vector<Cpu> cpus;
-  double two_over_one = 0;
+  double two_over_one = 0, handoff_ns = 0;
+  // One thread on each of two CPUs passing a counter back and forth (one cache line): ns a pass.
+  // What every stage of a tick pays to hand its data from one core to the other.
+  static double handoff(int cpu_a, int cpu_b) {
+    alignas(64) std::atomic<long> turn{0};
+    constexpr long kPasses = 100000;
+    auto play = [&turn](int cpu, long first) {
+      pin_to(cpu);
+      for (long i = first; i < 2 * kPasses; i += 2) {
+        while (turn.load(std::memory_order_acquire) != i) {
+        }
+        turn.store(i + 1, std::memory_order_release);
+      }
+    };
+    const auto t0 = std::chrono::steady_clock::now();
+    std::thread a(play, cpu_a, 0), b(play, cpu_b, 1);
+    a.join(), b.join();
+    return std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count() / (2 * kPasses);
+  }
   static double walk_ns(size_t mib) {
     const size_t lines = mib * 1024 * 1024 / 64;  // one 8-byte link a 64-byte line
     std::vector<uint64_t> a(lines * 8);
@@ -249,16 +269,19 @@ struct MachineProbe {
     std::thread a = chain_on(m.cpus[0].cpu, mine), b = chain_on(m.cpus[1].cpu, other);
     a.join(), b.join();
     m.two_over_one = std::max(mine, other) / one;
+    m.handoff_ns = handoff(m.cpus[0].cpu, m.cpus[1].cpu);
     return m;
   }
   std::string text() const {
     std::string s = "random walk ns a load (1 MiB, 64 MiB):";
-    char b[96];
+    char b[160];
     for (const Cpu& c : cpus) {
       std::snprintf(b, sizeof b, " cpu%d %.1f, %.1f;", c.cpu, c.walk1_ns, c.walk64_ns);
       s += b;
     }
-    if (two_over_one > 0) std::snprintf(b, sizeof b, " two threads' chain %.2fx one's", two_over_one);
+    if (two_over_one > 0)
+      std::snprintf(b, sizeof b, " two threads' chain %.2fx one's; a line passed between cpu%d and cpu%d in %.0f ns",
+                    two_over_one, cpus[0].cpu, cpus[1].cpu, handoff_ns);
     else std::snprintf(b, sizeof b, " one CPU");
     return s + b;
   }
