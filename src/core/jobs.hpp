@@ -11,8 +11,8 @@
 //    next unclaimed one when it arrives, so a stage never waits for a worker to wake (a short
 //    stage may run wholly on the caller). The caller claims from the first chunk up, workers
 //    from the last down: from stage to stage and tick to tick the same items tend to stay on the
-//    same thread, and their data in that core's cache. Which thread runs a chunk changes nothing: fn's
-//    outputs are keyed by the chunk index c. The split depends only on count, grain, per_thread
+//    same thread, and their data in that core's cache. Which thread runs a chunk changes
+//    nothing: fn's outputs are keyed by the chunk index c. The split depends only on count, grain, per_thread
 //    and threads(): a stage whose chunks write only their own outputs (per-chunk buffers, or the
 //    slots of their own range), merged afterwards in chunk order, gives the same bytes as one
 //    thread walking [0, count) in order.
