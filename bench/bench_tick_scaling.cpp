@@ -16,8 +16,9 @@
 // shared with other work, wall time includes waiting for a core). The
 // 1- and 2-thread runs of each kind run the same ticks (their event logs are compared: they must
 // be the same bytes, else the bench stops). Before and after, the machine is probed (MachineProbe:
-// cache and memory latency, whether two threads run as fast as one) and that is printed, and
-// written as two comment lines at the end of the CSV. Past 32,767 entities the node numbers its entities
+// cache and memory latency, whether two threads run as fast as one, how fast a cache line passes
+// between the CPUs), and that and the CPUs the tick's thread ran on are printed and written as
+// comment lines at the end of the CSV. Past 32,767 entities the node numbers its entities
 // under several DIS applications (node/ownership.hpp), so the whole tick is measured at every N.
 // Usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T] [--stages]]
 //   default N = 500 ... 200,000 -> bench/results/tick_scaling.csv; --quick: 500 and 5,000, no CSV;
@@ -179,11 +180,13 @@ struct Node {
 // often not alike, and which one is slower changes (the host moves them): on 4 Dec 17:30 UTC the
 // same 500-vehicle tick on one thread took 0.130 ms pinned to cpu0 and 0.144-0.168 ms pinned to
 // cpu1, whose loads from memory were then about 30 ns slower (a compute chain ran as fast on
-// both); an hour later cpu0 was the slower. So a run depends on where the tick's thread runs
+// both); a few minutes later cpu0 was the slower. So a run depends on where the tick's thread runs
 // (--pin chooses it; the bench reports where it ran). Probed on each CPU in turn: ns per load of
 // a dependent random walk over 1 MiB (the core's own cache) and 64 MiB (memory); a dependent
 // multiply chain on two threads at once against one (1.0 when both cores are ours); and the time
-// a cache line takes to pass from one CPU to the other (240-320 ns here on 4 Dec 18:10 UTC).
+// a cache line takes to pass from one CPU to the other: 235-315 ns on 4 Dec 18:10-19:00 UTC, when
+// the second thread gained 1.05-1.4x at 500 vehicles, and 58 ns at 19:02, when it gained 1.61x
+// (the host placed the two vCPUs apart, then where they share a cache).
 volatile uint64_t probe_sink;  // keeps the probes' loops
 
 bool pin_to(int cpu) {  // the calling thread to one CPU

@@ -47,13 +47,10 @@ void dr_rebase(const net::KinematicState& s, const net::DrPublisher& pub, double
 }
 
 net::KinematicState exact_state(const world::World& w, int e, DrAnchor& a) {
-  // p into ECEF and DIS angles, and the Jacobian there (its velocity's too): geo::FrameMemo
-  // computes p's inverse, sines and convergence once.
+  // p into ECEF and DIS angles, and the Jacobian there (the one its velocity went through).
   geo::FrameMemo memo(w.terrain.frame());
-  const net::KinematicState s = entity_truth(w, e, memo);
-  const Vec3 p = w.ents.pos[e];
-  a.jac = memo.jacobian(memo.to_geodetic(p));
-  a.p = p;
+  const net::KinematicState s = entity_truth(w, e, memo, &a.jac);
+  a.p = w.ents.pos[e];
   a.heading = w.ents.heading_deg[e], a.pitch = w.ents.pitch_deg[e], a.roll = w.ents.roll_deg[e];
   a.valid = false;  // until dr_rebase
   return s;

@@ -27,7 +27,7 @@ net::KinematicState entity_truth(const world::World& w, int e) {
   return entity_truth(w, e, memo);
 }
 
-net::KinematicState entity_truth(const world::World& w, int e, geo::FrameMemo& memo) {
+net::KinematicState entity_truth(const world::World& w, int e, geo::FrameMemo& memo, Mat3* jac) {
   net::KinematicState s;
   const Vec3 p = w.ents.pos[e];
   const geo::Geodetic g = memo.to_geodetic(p);  // once, for the position and the orientation
@@ -35,7 +35,9 @@ net::KinematicState entity_truth(const world::World& w, int e, geo::FrameMemo& m
   s.position = ev(pe);
   const Vec3 eu = memo.to_dis_euler(g, w.ents.heading_deg[e], w.ents.pitch_deg[e], w.ents.roll_deg[e]);
   s.orientation = {eu.x(), eu.y(), eu.z()};
-  s.velocity = ev(memo.jacobian(g) * w.ents.vel[e]);  // the derivative (was a 1 s difference)
+  const Mat3 j = memo.jacobian(g);
+  s.velocity = ev(j * w.ents.vel[e]);  // the derivative (was a 1 s difference)
+  if (jac) *jac = j;
   return s;
 }
 

@@ -17,9 +17,9 @@ namespace npsnet::node {
 // Jacobian at e's position), DIS Euler angles (acceleration and angular velocity zero; the
 // publisher fills them).
 net::KinematicState entity_truth(const world::World& w, int e);
-// The same through `memo` (the same bits): e's position's inverse, sines and convergence are
-// kept there for the caller (exact_state's Jacobian).
-net::KinematicState entity_truth(const world::World& w, int e, geo::FrameMemo& memo);
+// The same through `memo` (the same bits); with `jac`, also the Jacobian at e's position that the
+// velocity went through (exact_state's anchor).
+net::KinematicState entity_truth(const world::World& w, int e, geo::FrameMemo& memo, Mat3* jac = nullptr);
 
 // The one Entity State fill of a local vehicle: id, force, kind's DIS type (also as the
 // alternative type), marking = scenario id, appearance, kinematics with `algorithm`, timestamp

@@ -1,7 +1,7 @@
-// geo::FrameMemo: LocalFrame's to_geodetic, to_ecef, to_dis_euler and jacobian through the kept series
-// terms, inverses and sines give the bits of the plain functions, for runs of points that share
-// coordinates (p, p + v, p + z, p + x, p + y) and runs that
-// share only some of them (one coordinate, a latitude but not a longitude, +0 against -0).
+// geo::FrameMemo: LocalFrame's to_geodetic, to_ecef, to_dis_euler and jacobian through the kept
+// series terms, inverses, sines and convergences give the bits of the plain functions, for runs of
+// points that share coordinates (p, p + v, p + z, p + x, p + y) and runs that share only some of
+// them (one coordinate, a latitude but not a longitude, +0 against -0).
 #include <gtest/gtest.h>
 
 #include <cstdint>
