@@ -1,21 +1,32 @@
 #!/usr/bin/env bash
-# Every test: install, build, run ctest; then the same tests under AddressSanitizer +
-# UndefinedBehaviorSanitizer (skip that part with NPSNET_NO_SANITIZE=1); then each libFuzzer
-# target from its seeds, a repeatable run of NPSNET_FUZZ_RUNS inputs (default 3000) capped at
-# NPSNET_FUZZ_SECONDS (default 15) each (skip with NPSNET_NO_FUZZ=1).
+# Every test: install, build, run ctest; then the engine rooms' tests (core, world, dynamics,
+# collision, input, record, net, the FCL oracle, the fuzz replays that need no node) under
+# AddressSanitizer + UndefinedBehaviorSanitizer: NPSNET_SANITIZE_ROOMS=all builds and runs every
+# test there instead (about an hour more), NPSNET_NO_SANITIZE=1 skips the stage; then each
+# libFuzzer target (ASan + UBSan, the node's datagrams and checkpoints among them) from its seeds,
+# a repeatable run of NPSNET_FUZZ_RUNS inputs (default 3000) capped at NPSNET_FUZZ_SECONDS
+# (default 15) each (skip with NPSNET_NO_FUZZ=1). Each stage prints its minutes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+t0=$SECONDS
+stage() { echo "== test.sh: $1 ($(( (SECONDS - t0) / 60 )) min so far)"; }
 bash scripts/install-deps.sh
+stage "build"
 bash scripts/build.sh build
+stage "ctest"
 # Under a virtual display when xvfb-run exists, so the GLFW window test runs too.
 XVFB=""
 if command -v xvfb-run >/dev/null 2>&1 && [ -z "${DISPLAY:-}" ]; then XVFB="xvfb-run -a"; fi
 (cd build && $XVFB ctest --output-on-failure -j2 --timeout 600)
 if [ "${NPSNET_NO_SANITIZE:-0}" != "1" ]; then
-  bash scripts/build.sh build-asan -DNPSNET_SANITIZE=ON -DNPSNET_BENCH=OFF
+  stage "ASan + UBSan build and ctest, rooms: ${NPSNET_SANITIZE_ROOMS:-engine}"
+  bash scripts/build.sh build-asan -DNPSNET_SANITIZE=ON -DNPSNET_BENCH=OFF \
+    -DNPSNET_ROOMS="${NPSNET_SANITIZE_ROOMS:-engine}"
   (cd build-asan && ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 \
      ctest --output-on-failure -j2 --timeout 900)
 fi
 if [ "${NPSNET_NO_FUZZ:-0}" != "1" ]; then
+  stage "fuzz"
   NPSNET_FUZZ_RUNS="${NPSNET_FUZZ_RUNS:-3000}" bash scripts/fuzz.sh "${NPSNET_FUZZ_SECONDS:-15}"
 fi
+stage "done"
