@@ -46,6 +46,7 @@
 #include "collision/sweep.hpp"
 #include "collision/trace.hpp"
 #include "core/constants.hpp"
+#include "core/heading_memo.hpp"
 #include "core/jobs.hpp"
 #include "world/changes.hpp"
 #include "world/world.hpp"
@@ -144,6 +145,11 @@ class Detector {
   // Worker threads for detect (continuous method); nullptr (the default) = this thread only.
   // The pool must outlive the detector's use of it.
   void set_jobs(core::Jobs* jobs) { jobs_ = jobs; }
+  // Heading directions shared with the tick's dynamics stage (core/heading_memo.hpp: the node's
+  // one memo, so a vehicle's direction is worked out once a tick, by whichever stage meets its
+  // heading first); nullptr (the default) = the detector's own. Kept until changed; the caller
+  // keeps it alive. The same bits either way.
+  void set_heading_memo(core::HeadingMemo* memo) { shared_memo_ = memo; }
   // A new tick length (s; positive and finite, else std::invalid_argument).
   void set_dt(double dt_s);
   // Scene-aware auto tier: the budget (ms, >= 0) and the viewers' view volumes this tick.
@@ -255,12 +261,10 @@ class Detector {
   std::vector<Hpr> start_hpr_, prev_hpr_;
   std::vector<int16_t> prev_kind_;
   std::vector<uint8_t> prev_ok_;
-  // world::entity_centre(w, e) at the end of the tick, e's heading direction (heading_to_dir)
-  // kept from an earlier tick while its heading is the same float, bit for bit (a vehicle driving
-  // straight keeps it: one sincos fewer); yaw_bits_ = that heading's bits (a NaN: none yet).
+  // world::entity_centre(w, e) at the end of the tick, e's heading direction from memo().
   Vec3 centre_end(const world::World& w, int e);
-  std::vector<Vec2> yaw_dir_;
-  std::vector<uint32_t> yaw_bits_;
+  core::HeadingMemo own_memo_, *shared_memo_ = nullptr;
+  core::HeadingMemo& memo() { return shared_memo_ ? *shared_memo_ : own_memo_; }
   Motion motion(const world::World& w, int e) const;  // entity e's motion over this tick
   core::Jobs* jobs_ = nullptr;
   std::vector<Lane> lanes_;

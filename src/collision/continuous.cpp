@@ -1,7 +1,6 @@
 // The continuous method (collision.hpp): swept spheres in the broad phase, analytic time of
 // impact, shape tiers up to what the pair needs, border objects from every gridsquare.
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <stdexcept>
 #include <tuple>
@@ -196,10 +195,8 @@ bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
 
 Vec3 Detector::centre_end(const world::World& w, int e) {
   const auto& ents = w.ents;
-  const uint32_t bits = std::bit_cast<uint32_t>(ents.heading_deg[e]);  // -0 and +0 turn apart
-  if (bits != yaw_bits_[e]) yaw_dir_[e] = heading_to_dir(ents.heading_deg[e]), yaw_bits_[e] = bits;
   const world::Kind& k = w.kinds[ents.kind[e]];
-  return ents.pos[e] + world::pose_rotation(yaw_dir_[e], ents.pitch_deg[e], ents.roll_deg[e]) *
+  return ents.pos[e] + world::pose_rotation(memo().dir(static_cast<size_t>(e), ents.heading_deg[e]), ents.pitch_deg[e], ents.roll_deg[e]) *
                            k.centre_by_state[ents.state[e]].cast<double>();
 }
 
@@ -363,7 +360,7 @@ void Detector::detect_continuous(const world::World& w) {
   // Active entities, their sweeps and swept boxes. Reject non-finite input before any use.
   order_.clear();
   start_hpr_.resize(n), prev_hpr_.resize(n), prev_kind_.resize(n, -1), prev_ok_.resize(n, 0);
-  yaw_dir_.resize(n), yaw_bits_.resize(n, 0x7fc00000u);
+  memo().resize(n);
   for (int e = 0; e < n; ++e) {
     if (!ents.active[e]) {
       prev_ok_[e] = 0;

@@ -16,6 +16,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/heading_memo.hpp"
 #include "core/jobs.hpp"
 #include "world/changes.hpp"
 #include "world/world.hpp"
@@ -30,22 +31,14 @@ struct GroundImpact {
   Vec3 point{0, 0, 0};
 };
 
-// heading_to_dir of each entity's stored (float) heading, kept by step from tick to tick while
-// that float keeps its bits. A vehicle moves along its stored heading and holds its course while
-// the waypoint lies within 0.01 deg of it, so on a straight leg the heading stays the same float
-// and its direction comes from here instead of a sin and cos. The entry is a function of the
-// float's bits only: whatever entity a slot later holds, a matching key gives the same bits as
-// the sin and cos.
-struct HeadingDirs {
-  std::vector<uint64_t> key;  // (1 << 32) | the float's bits; 0 = none
-  std::vector<Vec2> dir;      // heading_to_dir(that float)
-};
-
 // Moves every local active entity by dt. Appends munitions that met the terrain to `impacts`
 // (in index order). `jobs`: worker threads for the vehicles (nullptr: this thread only).
-// `memo`: the caller's HeadingDirs, kept between calls (nullptr: none; the same bits either way).
+// `memo`: the caller's heading directions (core/heading_memo.hpp), kept between calls; a vehicle
+// moves along its stored heading and holds its course while the waypoint lies within 0.01 deg of
+// it, so on a straight leg the heading stays the same float. Each moved ground vehicle's new
+// heading is noted for the collision stage (nullptr: none; the same bits either way).
 void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::Jobs* jobs = nullptr,
-          HeadingDirs* memo = nullptr);
+          core::HeadingMemo* memo = nullptr);
 
 // Terrain following for a ground vehicle at its current (x, y): sets z, pitch and roll from the
 // terrain under the corners of its footprint (the intact model's extent).

@@ -1,6 +1,5 @@
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cstdint>
 #include <utility>
 #include <cmath>
@@ -40,20 +39,12 @@ double turn_towards(double heading, double wanted, double max_step) {
   return wrap360(heading + std::clamp(d, -max_step, max_step));
 }
 
-// The memo's key for heading h when h is a float (its bits, sign included), else 0 (no entry).
-uint64_t heading_key(double h) {
+// The direction of heading h: the memo's when h is a float's value (core/heading_memo.hpp: the
+// same bits as its sin and cos, kept for the stages after), else its sin and cos.
+Vec2 dir_of_float(double h, int e, core::HeadingMemo* memo) {
   const float f = static_cast<float>(h);
-  return static_cast<double>(f) == h ? (uint64_t{1} << 32) | std::bit_cast<uint32_t>(f) : 0;
-}
-
-// The direction of heading h, a float's value: the memo's when it holds h, else its sin and cos
-// (the same bits either way). Notes it in the memo.
-Vec2 dir_of_float(double h, int e, HeadingDirs* memo) {
-  const uint64_t key = memo ? heading_key(h) : 0;
-  if (key != 0 && memo->key[e] == key) return memo->dir[e];
-  const Vec2 d = heading_to_dir(h);
-  if (memo) memo->key[e] = key, memo->dir[e] = d;
-  return d;
+  if (memo && static_cast<double>(f) == h) return memo->dir(static_cast<size_t>(e), f);
+  return heading_to_dir(h);
 }
 
 // Whether `to` lies within kCourseHoldDeg of the unit direction d (ahead of it).
@@ -65,7 +56,7 @@ bool on_course(const Vec2& d, const Vec2& to) {
 // flatten: the terrain lookups (Terrain::height, is_water) and terrain following inline here.
 // The vehicle moves along its stored (float) heading, the one terrain following, collision and
 // the network see.
-[[gnu::flatten]] void step_vehicle(world::World& w, int e, double dt, HeadingDirs* memo) {
+[[gnu::flatten]] void step_vehicle(world::World& w, int e, double dt, core::HeadingMemo* memo) {
   auto& ents = w.ents;
   const world::Kind& k = w.kinds[ents.kind[e]];
   const bool dead = ents.state[e] + 1 >= static_cast<int>(k.states.size());
@@ -223,10 +214,10 @@ void follow_terrain_along(world::World& w, int e, const Vec2& f) {
   ents.pitch_deg[e] = pitch, ents.roll_deg[e] = roll;
 }
 
-void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::Jobs* jobs, HeadingDirs* memo) {
+void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::Jobs* jobs, core::HeadingMemo* memo) {
   auto& ents = w.ents;
   const size_t n = ents.size();
-  if (memo && memo->key.size() < n) memo->key.resize(n, 0), memo->dir.resize(n);
+  if (memo) memo->resize(n);
   // A player drives its vehicle (drive.hpp); munitions come second, below.
   auto moves = [&](size_t e) { return ents.active[e] && ents.local[e] && !ents.driven[e]; };
   // Each range also notes the span of its munitions, so that the munitions' pass (on this thread,

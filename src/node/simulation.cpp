@@ -223,6 +223,7 @@ void Simulation::tick() {
   dynamics::step(w_, dt_, impacts_, jobs_.get(), &heading_dirs_);
   if (driven_ >= 0 && w_.ents.driven[driven_] && w_.ents.local[driven_]) dynamics::drive(w_, driven_, controls, dt_, crashes_);
   if (before_detect) before_detect(w_);
+  detector_.set_heading_memo(&heading_dirs_);  // this tick's address of it (a Simulation can move)
   detector_.detect(w_, contacts_);
   if (decides)
     contacts_.erase(std::remove_if(contacts_.begin(), contacts_.end(), [&](const collision::Contact& c) { return !decides(c); }),

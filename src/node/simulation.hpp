@@ -135,7 +135,7 @@ class Simulation {
   collision::RespondScratch respond_scratch_;
   std::vector<collision::Contact> contacts_;
   std::vector<dynamics::GroundImpact> impacts_;
-  dynamics::HeadingDirs heading_dirs_;  // dynamics::step's, from tick to tick
+  core::HeadingMemo heading_dirs_;  // dynamics::step's and collision::detect's, from tick to tick
   std::vector<dynamics::Crash> crashes_;
   int driven_ = -1;
   bool fire_held_ = false;

@@ -69,7 +69,7 @@ TEST(Vehicles, HoldTheirCourseWithinAHundredthOfADegreeAndCorrectBeyondIt) {
     const Vec2 wp(1900, 500 + 1800 * std::tan(deg2rad(off_deg)));
     w.ents.route[e] = {wp};
     std::vector<dynamics::GroundImpact> imp;
-    dynamics::HeadingDirs memo;
+    core::HeadingMemo memo;
     dynamics::step(w, 1.0 / 60, imp, nullptr, &memo);
     if (off_deg < 0.01) EXPECT_EQ(w.ents.heading_deg[e], 90.0f) << "within the band the course is held";
     else EXPECT_LT(w.ents.heading_deg[e], 90.0f) << "beyond it the vehicle turns to the waypoint";
@@ -200,10 +200,10 @@ void expect_same_state(const world::World& a, const world::World& b, int tick) {
 }
 }  // namespace
 
-TEST(HeadingDirs, KeptDirectionsGiveTheBitsOfTheSinAndCos) {
+TEST(HeadingMemo, KeptDirectionsGiveTheBitsOfTheSinAndCos) {
   // The same crowd stepped without and with the memo: the same bits every tick; then the memo,
   // full of the first crowd's entries, serves another crowd in the same slots: still the same.
-  dynamics::HeadingDirs memo;
+  core::HeadingMemo memo;
   for (uint32_t seed : {7u, 8u}) {
     auto plain = hilly_crowd(seed), kept = hilly_crowd(seed);
     std::vector<dynamics::GroundImpact> imp;
@@ -215,10 +215,10 @@ TEST(HeadingDirs, KeptDirectionsGiveTheBitsOfTheSinAndCos) {
     }
     // The memo holds the stored heading's direction of every moving ground vehicle, bit for bit.
     for (size_t e = 0; e < kept.ents.size(); ++e) {
-      ASSERT_EQ(memo.key[e], (uint64_t{1} << 32) | std::bit_cast<uint32_t>(kept.ents.heading_deg[e])) << e;
+      ASSERT_EQ(memo.key(e), (uint64_t{1} << 32) | std::bit_cast<uint32_t>(kept.ents.heading_deg[e])) << e;
       const Vec2 d = heading_to_dir(kept.ents.heading_deg[e]);
-      EXPECT_EQ(std::bit_cast<uint64_t>(memo.dir[e].x()), std::bit_cast<uint64_t>(d.x())) << e;
-      EXPECT_EQ(std::bit_cast<uint64_t>(memo.dir[e].y()), std::bit_cast<uint64_t>(d.y())) << e;
+      EXPECT_EQ(std::bit_cast<uint64_t>(memo.kept_dir(e).x()), std::bit_cast<uint64_t>(d.x())) << e;
+      EXPECT_EQ(std::bit_cast<uint64_t>(memo.kept_dir(e).y()), std::bit_cast<uint64_t>(d.y())) << e;
     }
   }
 }
