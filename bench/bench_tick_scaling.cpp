@@ -369,9 +369,10 @@ int main(int argc, char** argv) {
       std::printf("%8d %9zu %6d | %s, %d thread(s): median %.3f ms, cpu %.3f ms | %d\n", n, w.ents.size(), ticks,
                   one_net ? "net on" : "net off", one_threads, nd.median(), nd.cpu_median(), nd.collisions());
       if (nd.bridge)  // what net out sent: the same bits before and after a change to it
-        std::printf("  Entity States: digest %016llx, %llu exact DR tests\n",
+        std::printf("  Entity States: digest %016llx, %llu exact DR tests, %llu ground vehicles' sent\n",
                     static_cast<unsigned long long>(nd.bridge->entity_state_digest()),
-                    static_cast<unsigned long long>(nd.bridge->exact_dr_tests()));
+                    static_cast<unsigned long long>(nd.bridge->exact_dr_tests()),
+                    static_cast<unsigned long long>(nd.bridge->ground_es_sent()));
       if (nd.stages)
         for (int k = 0; k < StageClock::kStages; ++k)
           std::printf("  stage %-20s median %.4f ms\n", StageClock::kNames[k], Node::median_of(nd.stages->ms[k]));

@@ -21,7 +21,7 @@ inline void add_crowd(world::World& w, int n) {
     if (i % 2) x = cx + (u(rng) - 0.5) * 2000, y = cy + (u(rng) - 0.5) * 2000;
     else x = u(rng) * W, y = u(rng) * D;
     const int k = w.kinds.find(kinds[i % 3]);
-    const int e = w.ents.add("v" + std::to_string(i), k, Vec3(x, y, w.terrain.height(x, y)),
+    const int e = w.ents.add(std::string("v").append(std::to_string(i)), k, Vec3(x, y, w.terrain.height(x, y)),
                              static_cast<float>(u(rng) * 360), static_cast<float>(w.kinds[k].radius_m));
     const Vec2 d = heading_to_dir(w.ents.heading_deg[e]);
     w.ents.vel[e] = Vec3(d.x(), d.y(), 0) * (u(rng) * 15);

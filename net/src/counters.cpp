@@ -30,17 +30,24 @@ std::uint64_t Counters::sent_total() const noexcept {
   return std::accumulate(sent.begin(), sent.end(), std::uint64_t{0});
 }
 
+namespace {
+// " name=count" appended (appends, not " " + name: GCC 12 warns on "literal" + std::string).
+void tally(std::string& s, std::string_view name, std::uint64_t count) {
+  s.append(" ").append(name).append("=").append(std::to_string(count));
+}
+}  // namespace
+
 std::string Counters::summary() const {
   std::string s = "datagrams " + std::to_string(datagrams_received) + " pdus " +
                   std::to_string(pdus_seen) + " | decoded";
   for (std::size_t t = 0; t < decoded.size(); ++t)
-    if (decoded[t]) s += " " + pdu_type_name(static_cast<std::uint8_t>(t)) + "=" + std::to_string(decoded[t]);
+    if (decoded[t]) tally(s, pdu_type_name(static_cast<std::uint8_t>(t)), decoded[t]);
   s += " | skipped unknown_type=" + std::to_string(skipped_unknown_type) +
        " version=" + std::to_string(skipped_version) + " | rejected";
   bool any = false;
   for (std::size_t e = 1; e < rejected.size(); ++e)
     if (rejected[e]) {
-      s += " " + std::string(to_string(static_cast<DecodeError>(e))) + "=" + std::to_string(rejected[e]);
+      tally(s, to_string(static_cast<DecodeError>(e)), rejected[e]);
       any = true;
     }
   if (!any) s += " none";
@@ -49,7 +56,7 @@ std::string Counters::summary() const {
   any = false;
   for (std::size_t t = 0; t < sent.size(); ++t)
     if (sent[t]) {
-      s += " " + pdu_type_name(static_cast<std::uint8_t>(t)) + "=" + std::to_string(sent[t]);
+      tally(s, pdu_type_name(static_cast<std::uint8_t>(t)), sent[t]);
       any = true;
     }
   if (!any) s += " none";

@@ -34,7 +34,7 @@ std::string_view to_string(UdpMode m) noexcept {
 Result<UdpUrl, std::string> parse_udp_url(std::string_view url) {
   using R = Result<UdpUrl, std::string>;
   const std::string expected = " (expected udp://ADDR:PORT, e.g. udp://239.1.2.3:3000)";
-  const std::string quoted = "\"" + std::string(url) + "\"";
+  const std::string quoted = std::string("\"").append(url).append("\"");
   constexpr std::string_view scheme = "udp://";
   if (url.substr(0, scheme.size()) != scheme)
     return R::failure("network URL " + quoted + " does not start with udp://" + expected);

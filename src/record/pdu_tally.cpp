@@ -30,7 +30,10 @@ std::uint64_t PduTally::pdus() const { return counters_.pdus_seen; }
 std::string PduTally::by_type_text() const {
   std::string s;
   for (std::size_t t = 0; t < by_type_.size(); ++t)
-    if (by_type_[t]) s += (s.empty() ? "" : " ") + net::pdu_type_name(static_cast<std::uint8_t>(t)) + "=" + std::to_string(by_type_[t]);
+    if (by_type_[t]) {  // appends: GCC 12 warns (falsely) on "literal" + std::string
+      if (!s.empty()) s += ' ';
+      s.append(net::pdu_type_name(static_cast<std::uint8_t>(t))).append("=").append(std::to_string(by_type_[t]));
+    }
   return s.empty() ? "none" : s;
 }
 

@@ -28,7 +28,10 @@ class InputError : public std::runtime_error {
  private:
   static std::string join(const std::vector<Problem>& ps) {
     std::string s;
-    for (const auto& p : ps) s += (s.empty() ? "" : "\n") + p.str();
+    for (const auto& p : ps) {  // appends: GCC 12 warns (falsely) on "literal" + std::string
+      if (!s.empty()) s += '\n';
+      s += p.str();
+    }
     return s;
   }
   std::vector<Problem> problems_;

@@ -26,14 +26,14 @@ world::World wood_and_traffic(uint64_t seed) {
   // A wood: a tree about every 6 m over 300 m x 300 m; a village of buildings; rocks.
   for (int j = 0; j < 50; ++j)
     for (int i = 0; i < 50; ++i)
-      test::add_fixed(w, "t" + std::to_string(j * 50 + i), "tree", 400 + 6 * i + 3 * u(rng), 400 + 6 * j + 3 * u(rng));
+      test::add_fixed(w, test::numbered("t", j * 50 + i), "tree", 400 + 6 * i + 3 * u(rng), 400 + 6 * j + 3 * u(rng));
   for (int i = 0; i < 30; ++i)
-    test::add_fixed(w, "b" + std::to_string(i), i % 5 ? "building" : "rock", 900 + 40 * (i % 6) + 10 * u(rng),
+    test::add_fixed(w, test::numbered("b", i), i % 5 ? "building" : "rock", 900 + 40 * (i % 6) + 10 * u(rng),
                     900 + 40 * (i / 6) + 10 * u(rng));
   // Traffic through them: slow and fast, straight and turning, some from outside the map.
   for (int v = 0; v < 80; ++v) {
     const double speed = v % 10 == 0 ? 120 + 200 * u(rng) : 2 + 25 * u(rng);
-    const int e = test::add_vehicle(w, "v" + std::to_string(v), v % 7 ? "m1a1" : "hmmwv", 350 + 800 * u(rng),
+    const int e = test::add_vehicle(w, test::numbered("v", v), v % 7 ? "m1a1" : "hmmwv", 350 + 800 * u(rng),
                                     350 + 800 * u(rng), 360 * u(rng), speed);
     if (v == 79) w.ents.pos[e].x() = -30;  // off the map's west edge
   }

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "collision/id_rank.hpp"
+#include "support/fixture.hpp"
 #include "world/world.hpp"
 
 using npsnet::collision::IdRank;
@@ -14,7 +15,7 @@ using npsnet::collision::rank_ids_brute;
 
 TEST(IdRank, AgreesWithTheFullSortAsIdsAreAddedAndReplaced) {
   std::mt19937 rng(13);
-  auto name = [&] { return "v" + std::to_string(rng() % 5000); };  // duplicates on purpose
+  auto name = [&] { return npsnet::test::numbered("v", rng() % 5000); };  // duplicates on purpose
   std::vector<std::string> ids;
   for (int i = 0; i < 3000; ++i) ids.push_back(name());
   IdRank r;
@@ -28,8 +29,8 @@ TEST(IdRank, AgreesWithTheFullSortAsIdsAreAddedAndReplaced) {
     for (int c = 0; c < changes; ++c) {
       const int what = static_cast<int>(rng() % 3);
       const uint32_t slot = static_cast<uint32_t>(rng() % ids.size());
-      if (what == 0) ids.push_back("m" + std::to_string(step)), made.push_back(static_cast<uint32_t>(ids.size() - 1));  // a round fired
-      else if (what == 1) ids[slot] = "m" + std::to_string(step), made.push_back(slot);  // a slot reclaimed
+      if (what == 0) ids.push_back(npsnet::test::numbered("m", step)), made.push_back(static_cast<uint32_t>(ids.size() - 1));  // a round fired
+      else if (what == 1) ids[slot] = npsnet::test::numbered("m", step), made.push_back(slot);  // a slot reclaimed
       else ids[slot] = name(), made.push_back(slot), made.push_back(slot);  // named again, listed twice
     }
     if (step % 3 == 0) ids.push_back(name());  // appended without being listed: still placed
@@ -48,7 +49,7 @@ TEST(IdRank, AgreesWithTheFullSortAsIdsAreAddedAndReplaced) {
 // and only as far back as it remembers; the Detector's ranks follow rounds fired and reclaimed.
 TEST(IdRank, EntitiesSayWhichSlotsWereMadeSince) {
   npsnet::world::Entities ents;
-  for (int i = 0; i < 10; ++i) ents.add("v" + std::to_string(i), 0, npsnet::Vec3::Zero(), 0, 1);
+  for (int i = 0; i < 10; ++i) ents.add(npsnet::test::numbered("v", i), 0, npsnet::Vec3::Zero(), 0, 1);
   const int64_t at = ents.created;
   ents.add("m1", 0, npsnet::Vec3::Zero(), 0, 1);
   ents.reset(3, "m2", 0, npsnet::Vec3::Zero(), 0, 1);
@@ -61,7 +62,7 @@ TEST(IdRank, EntitiesSayWhichSlotsWereMadeSince) {
   const npsnet::world::Entities copy = ents;
   EXPECT_NE(copy.lineage.v, ents.lineage.v) << "a copy is another table";
   EXPECT_FALSE(copy.made_since(ents.lineage.v, at, made));
-  for (int i = 0; i < npsnet::world::Entities::kMadeMemory; ++i) ents.reset(0, "r" + std::to_string(i), 0, npsnet::Vec3::Zero(), 0, 1);
+  for (int i = 0; i < npsnet::world::Entities::kMadeMemory; ++i) ents.reset(0, npsnet::test::numbered("r", i), 0, npsnet::Vec3::Zero(), 0, 1);
   EXPECT_FALSE(ents.made_since(ents.lineage.v, at, made)) << "more made than it remembers";
   EXPECT_TRUE(ents.made_since(ents.lineage.v, ents.created - npsnet::world::Entities::kMadeMemory, made));
   EXPECT_EQ(made.size(), static_cast<size_t>(npsnet::world::Entities::kMadeMemory));

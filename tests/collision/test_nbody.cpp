@@ -30,7 +30,7 @@ std::vector<Body> converging(int n, double rho0, double rho1, double dt) {
   for (int i = 0; i < n; ++i) {
     const double bearing = 360.0 * i / n;  // compass bearing of the body seen from the centre
     const Vec2 d = heading_to_dir(bearing);
-    b.push_back({"v" + std::to_string(i), 1000 + rho * d.x(), 1000 + rho * d.y(), wrap360(bearing + 180), speed});
+    b.push_back({test::numbered("v", i), 1000 + rho * d.x(), 1000 + rho * d.y(), wrap360(bearing + 180), speed});
   }
   return b;
 }

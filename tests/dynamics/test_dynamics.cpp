@@ -177,7 +177,7 @@ world::World hilly_crowd(uint32_t seed) {
   const char* kinds[] = {"m1a1", "bmp", "hmmwv"};
   for (int v = 0; v < 60; ++v) {
     const double heading = v % 7 == 0 ? 0.0 : v % 11 == 0 ? 270.0 : hd(rng);
-    const int e = test::add_vehicle(w, "v" + std::to_string(v), kinds[v % 3], xy(rng), xy(rng), heading, v % 13 == 0 ? 0.0 : sp(rng));
+    const int e = test::add_vehicle(w, test::numbered("v", v), kinds[v % 3], xy(rng), xy(rng), heading, v % 13 == 0 ? 0.0 : sp(rng));
     if (v % 5 != 0) {  // a looping route of 3 to 5 waypoints; every fifth vehicle holds its heading
       for (int k = 0; k < 3 + v % 3; ++k) w.ents.route[e].push_back(Vec2(xy(rng), xy(rng)));
       w.ents.loop_route[e] = 1;

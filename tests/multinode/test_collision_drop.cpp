@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <set>
 #include <string>
@@ -70,7 +71,8 @@ struct Relay {
     const int out = mcast_socket(0);
     const int ports[2] = {port1, port2};
     ok = in[0] >= 0 && in[1] >= 0 && out >= 0;
-    std::set<std::vector<std::uint8_t>> seen;  // Collision PDUs: octets 12-29 (the three ids)
+    std::set<std::array<std::uint8_t, 18>> seen;  // Collision PDUs: octets 12-29 (the three ids; a
+                                                  // fixed size: GCC 12 warns falsely on a vector's)
     std::vector<std::uint8_t> buf(65536);
     while (ok && !stop && lan::unix_now() < deadline) {
       pollfd p[2] = {{in[0], POLLIN, 0}, {in[1], POLLIN, 0}};
@@ -84,7 +86,9 @@ struct Relay {
           if (n < 0) break;
           if (ntohs(from.sin_port) != ports[k]) continue;  // not the node's own (our forwards)
           if (n >= 30 && buf[2] == kCollisionPduType) {
-            if (seen.insert(std::vector<std::uint8_t>(buf.begin() + 12, buf.begin() + 30)).second) {
+            std::array<std::uint8_t, 18> key;
+            std::copy(buf.begin() + 12, buf.begin() + 30, key.begin());
+            if (seen.insert(key).second) {
               ++dropped;
               continue;
             }

@@ -15,6 +15,13 @@ namespace npsnet::test {
 
 inline std::filesystem::path source(const std::string& rel) { return std::filesystem::path(NPSNET_SOURCE_DIR) / rel; }
 
+// An id made of a prefix and a number, "v" and 12 -> "v12". Appended: GCC 12 warns falsely
+// (-Wstringop-overflow, -Wrestrict) where "v" + std::to_string(12) is inlined.
+inline std::string numbered(std::string_view prefix, long long i) {
+  std::string s(prefix);
+  return s.append(std::to_string(i));
+}
+
 // A 2 km square at 10 m posts; height = base + slope_x * x.
 // The default scenario with a background crowd of `vehicles` (seed `seed`) placed and driving in
 // the square [lo, hi] of the local frame: the crowd of the threading and net-out tests.
