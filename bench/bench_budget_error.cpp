@@ -13,14 +13,14 @@
 //   a tree's or pole's trunk, the others' models); also the error table per tier (thesis, and the
 //   continuous method held at sphere, box, hull, mesh, and auto with an ample budget).
 // --crowd N: the 100,000-vehicle crowd of bench_broadphase (crowd_scene.hpp) on the default
-//   world: the full continuous step (one thread) with the default budget and without one (ample):
-//   the first tick (every contact new) and the ticks after (vehicles moved back and forth), ms
-//   and the pairs each tier decided.
+//   world: the full continuous step (on --threads T, default 1: the node's pool) with the default
+//   budget and without one (ample): the first tick (every contact new) and --ticks - 1 after
+//   (vehicles moved back and forth), ms and the pairs each tier decided.
 // Columns (vehicles, --fixed): budget_ms, pairs (needing a narrow phase, with a verdict), lowered
 // (pairs given a tier below their exact one), contacts, truth (FCL contacts), false_pos, misses,
 // point error median / p95 (m, over the contacts both find that do not touch from the tick's
 // start), detect_ms (our detect, wall, one thread).
-// Usage: bench_budget_error [--vehicles N] [--side M] [--fixed] [--crowd N] [--csv FILE]
+// Usage: bench_budget_error [--vehicles N] [--side M] [--fixed] [--crowd N [--threads T] [--ticks K]] [--csv FILE]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -229,7 +229,7 @@ int accuracy(int n, double side, bool fixed, std::string csv) {
 }
 
 // The full continuous step in the crowd, with the default budget and without one.
-int crowd(int n, std::string csv) {
+int crowd(int n, int threads, int ticks, std::string csv) {
   auto sc = world::load_scenario(std::string(NPSNET_SOURCE_DIR) + "/scenarios/default.toml");
   world::World w = world::build_world(sc);
   w.ents = world::Entities{};
@@ -240,14 +240,16 @@ int crowd(int n, std::string csv) {
   for (size_t e = 0; e < w.ents.size(); ++e) step.push_back(w.ents.vel[e] * dt);
   if (csv.empty()) csv = std::string(NPSNET_SOURCE_DIR) + "/bench/results/crowd_budget.csv";
   std::ofstream f(csv);
-  f << "vehicles,budget_ms,tick,ms,contacts,narrow_pairs,lowered,decided_sphere,decided_box,decided_hull,decided_mesh\n";
+  f << "vehicles,threads,budget_ms,tick,ms,contacts,narrow_pairs,lowered,decided_sphere,decided_box,decided_hull,decided_mesh\n";
   std::printf("| budget (ms) | tick | ms | contacts | pairs given a tier | lowered | decided by sphere / box / hull / mesh |\n"
               "|---|---|---|---|---|---|---|\n");
+  core::Jobs jobs(threads);
   for (double budget : {world::kDefaultCollisionBudgetMs, 1e9}) {
     collision::Detector det(collision::options_from("continuous", "auto", dt));
     det.set_budget_ms(budget);
+    if (threads > 1) det.set_jobs(&jobs);
     std::vector<double> later;
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < ticks; ++k) {
       if (k > 0)
         for (size_t e = 0; e < w.ents.size(); ++e) w.ents.pos[e] += (k & 1 ? 1.0 : -1.0) * step[e];
       const collision::DetectStats before = det.stats();
@@ -262,11 +264,12 @@ int crowd(int n, std::string csv) {
       const std::string b = budget > 1e8 ? "none" : std::to_string(budget).substr(0, 4);
       std::printf("| %s | %d | %.1f | %zu | %zu | %lld | %lld / %lld / %lld / %lld |\n", b.c_str(), k, ms, out.size(),
                   det.tier_choices().size(), lowered, (long long)d[1], (long long)d[2], (long long)d[3], (long long)d[4]);
-      f << n << ',' << b << ',' << k << ',' << ms << ',' << out.size() << ',' << det.tier_choices().size() << ',' << lowered
+      f << n << ',' << threads << ',' << b << ',' << k << ',' << ms << ',' << out.size() << ',' << det.tier_choices().size() << ',' << lowered
         << ',' << d[1] << ',' << d[2] << ',' << d[3] << ',' << d[4] << '\n';
       std::fflush(stdout);
     }
-    for (size_t e = 0; e < w.ents.size(); ++e) w.ents.pos[e] -= step[e];  // back where it started
+    if (ticks % 2 == 0)  // back where it started (odd ticks end there)
+      for (size_t e = 0; e < w.ents.size(); ++e) w.ents.pos[e] -= step[e];
   }
   return 0;
 }
@@ -274,7 +277,7 @@ int crowd(int n, std::string csv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int n = 3000, crowd_n = 0;
+  int n = 3000, crowd_n = 0, threads = 1, ticks = 4;
   double side = 600;
   bool fixed = false;
   std::string csv;
@@ -283,13 +286,15 @@ int main(int argc, char** argv) {
   app.add_option("--side", side, "the square's side (m)")->capture_default_str();
   app.add_flag("--fixed", fixed, "vehicle-vs-fixed encounters (and the error table per tier)");
   app.add_option("--crowd", crowd_n, "the full continuous step in an N-vehicle crowd on the default world, with and without the budget");
+  app.add_option("--threads", threads, "--crowd: threads of the detector's pool (the node's --threads)")->capture_default_str();
+  app.add_option("--ticks", ticks, "--crowd: ticks per budget (tick 0: every contact new)")->capture_default_str()->check(CLI::Range(1, 1000));
   app.add_option("--csv", csv, "where the CSV goes (default: bench/results/...)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
-  if (crowd_n > 0) return crowd(crowd_n, csv);
+  if (crowd_n > 0) return crowd(crowd_n, threads, ticks, csv);
   return accuracy(n, side, fixed, csv);
 }
 #endif

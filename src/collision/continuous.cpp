@@ -264,11 +264,16 @@ void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
       return;
     }
     ++L.stats.sweep_hits;
+    const uint64_t key = contact_key(e, static_cast<int>(o), true);
+    const bool continuing = std::binary_search(previous_.begin(), previous_.end(), key);
+    if (continuing) {  // the episode goes on; detect() would drop its contact (moving pairs: the same)
+      ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
+      L.touching.push_back(key);
+      return;
+    }
     Contact k;
     k.a = e, k.b = static_cast<int>(o), k.b_fixed = true, k.dt_s = dt;
-    const bool continuing = !sphere && std::binary_search(previous_.begin(), previous_.end(),
-                                                          contact_key(e, static_cast<int>(o), true));
-    if (sphere || continuing) {
+    if (sphere) {
       ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
       static_cast<Trace&>(k) = h;
       k.method = method_of(Tier::Sphere, true);
@@ -281,7 +286,7 @@ void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
     } else if (!narrow(w, e, static_cast<int>(o), true, tier, h.fraction, h.exit_fraction, k, L)) {
       return;
     }
-    L.touching.push_back(contact_key(e, static_cast<int>(o), true));
+    L.touching.push_back(key);
     L.candidates.push_back(k);
   };
   // The objects near: kept from an earlier tick while the swept box stays in their box (near_).
@@ -327,7 +332,9 @@ void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
     return;
   }
   L.touching.push_back(contact_key(a, b, false));
-  L.candidates.push_back(k);
+  // A running episode goes on (its key above) but reports nothing: detect() would drop its
+  // contact, so it is not made (in a crowd of overlapping vehicles, most of the pairs).
+  if (!continuing) L.candidates.push_back(k);
 }
 
 void Detector::decide_pending(const world::World& w, size_t p, Lane& L) {
