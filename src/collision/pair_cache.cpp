@@ -12,6 +12,7 @@ namespace npsnet::collision {
 namespace {
 constexpr size_t kSlotGrain = 2048;   // bodies per range below which a pass stays on one thread
 constexpr size_t kQueryGrain = 256;   // moved bodies per range of grid queries
+constexpr size_t kKeptGrain = 4096;   // kept pairs per range of the kept pairs' two passes
 // Moved bodies lie in no spatial order: the buckets of the one kQueryAhead later are asked of the
 // cache before a body's grid update or query (a hint: no result changes).
 constexpr size_t kQueryAhead = 4;
@@ -235,10 +236,23 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
   }
   live_ = n;  // every listed body is in the grid or large; the gone ones are out
   if (large_.size() > std::max(kRebuildLarge, n / 8)) rebuild_ = true;  // the cell no longer fits: next call
-  // 4. Kept pairs: those of two bodies that stayed; then the moved bodies' pairs, from the grid.
-  kept_.erase(std::remove_if(kept_.begin(), kept_.end(),
-                             [&](const auto& p) { return gone_moved_[p.first] == tick_ || gone_moved_[p.second] == tick_; }),
-              kept_.end());
+  // 4. Kept pairs: those of two bodies that stayed (per range, concatenated in range order: the
+  //    serial order); then the moved bodies' pairs, from the grid.
+  auto stayed = [&](const std::pair<uint32_t, uint32_t>& p) { return gone_moved_[p.first] != tick_ && gone_moved_[p.second] != tick_; };
+  const int kk = jobs ? jobs->chunks(kept_.size(), kKeptGrain, 4) : 1;
+  if (kk <= 1) {
+    kept_.erase(std::remove_if(kept_.begin(), kept_.end(), [&](const auto& p) { return !stayed(p); }), kept_.end());
+  } else {
+    if (chunk_pairs_.size() < static_cast<size_t>(kk)) chunk_pairs_.resize(kk);
+    core::run_chunks(jobs, kept_.size(), kKeptGrain, [&](int c, size_t p0, size_t p1) {
+      auto& to = chunk_pairs_[c];
+      to.clear();
+      for (size_t p = p0; p < p1; ++p)
+        if (stayed(kept_[p])) to.push_back(kept_[p]);
+    }, 4);
+    kept_.clear();
+    for (int c = 0; c < kk; ++c) kept_.insert(kept_.end(), chunk_pairs_[c].begin(), chunk_pairs_[c].end());
+  }
   const int kq = jobs ? jobs->chunks(moved_.size(), kQueryGrain, 4) : 1;
   if (chunk_pairs_.size() < static_cast<size_t>(kq)) chunk_pairs_.resize(kq);
   core::run_chunks(jobs, moved_.size(), kQueryGrain, [&](int c, size_t m0, size_t m1) {
@@ -250,10 +264,24 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
     }
   }, 4);
   for (int c = 0; c < kq; ++c) kept_.insert(kept_.end(), chunk_pairs_[c].begin(), chunk_pairs_[c].end());
-  // 5. This tick's pairs: the kept ones whose boxes overlap; the large bodies against every box.
-  for (const auto& [a, b] : kept_) {
-    const uint32_t i = slot_[a], j = slot_[b];
-    if (overlap(boxes[i], boxes[j])) out.emplace_back(std::min(i, j), std::max(i, j));
+  // 5. This tick's pairs: the kept ones whose boxes overlap (per range, concatenated in range
+  //    order); the large bodies against every box.
+  auto report = [&](size_t p0, size_t p1, std::vector<std::pair<uint32_t, uint32_t>>& to) {
+    for (size_t p = p0; p < p1; ++p) {
+      const uint32_t i = slot_[kept_[p].first], j = slot_[kept_[p].second];
+      if (overlap(boxes[i], boxes[j])) to.emplace_back(std::min(i, j), std::max(i, j));
+    }
+  };
+  const int ko = jobs ? jobs->chunks(kept_.size(), kKeptGrain, 4) : 1;
+  if (ko <= 1) {
+    report(0, kept_.size(), out);
+  } else {
+    if (chunk_pairs_.size() < static_cast<size_t>(ko)) chunk_pairs_.resize(ko);
+    core::run_chunks(jobs, kept_.size(), kKeptGrain, [&](int c, size_t p0, size_t p1) {
+      chunk_pairs_[c].clear();
+      report(p0, p1, chunk_pairs_[c]);
+    }, 4);
+    for (int c = 0; c < ko; ++c) out.insert(out.end(), chunk_pairs_[c].begin(), chunk_pairs_[c].end());
   }
   large_pairs(boxes, large_, [&](uint32_t j) { return state_[ids[j]] == kLarge; }, out, chunk_pairs_, jobs);
 }

@@ -24,9 +24,10 @@
 //    A bucket is one cache line (kInline entries in place, more in its overflow list).
 //  * Threading: the containment test (with the new fat box of a body that keeps its cells), the
 //    gone bodies (looked for only when the count says some went) and the moved bodies' grid
-//    queries run per range on the pool, each range into its own list, concatenated in range
-//    order; the buckets' updates and the kept pairs are serial, in body order. No allocation
-//    once warm (lists and overflows keep their capacity).
+//    queries, and the kept pairs' two passes (those of bodies that stayed; those whose boxes
+//    overlap), run per range on the pool, each range into its own list, concatenated in range
+//    order; the buckets' updates are serial, in body order. No allocation once warm (lists and
+//    overflows keep their capacity).
 // Units: metres, local frame (float boxes, as MovingGrid).
 #pragma once
 #include <cstdint>
