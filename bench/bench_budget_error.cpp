@@ -286,7 +286,7 @@ int main(int argc, char** argv) {
   app.add_option("--side", side, "the square's side (m)")->capture_default_str();
   app.add_flag("--fixed", fixed, "vehicle-vs-fixed encounters (and the error table per tier)");
   app.add_option("--crowd", crowd_n, "the full continuous step in an N-vehicle crowd on the default world, with and without the budget");
-  app.add_option("--threads", threads, "--crowd: threads of the detector's pool (the node's --threads)")->capture_default_str();
+  app.add_option("--threads", threads, "--crowd: threads of the detector's pool (the node's --threads)")->capture_default_str()->check(CLI::Range(1, core::Jobs::kMaxThreads));
   app.add_option("--ticks", ticks, "--crowd: ticks per budget (tick 0: every contact new)")->capture_default_str()->check(CLI::Range(1, 1000));
   app.add_option("--csv", csv, "where the CSV goes (default: bench/results/...)");
   try {
