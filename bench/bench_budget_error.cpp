@@ -15,12 +15,13 @@
 // --crowd N: the 100,000-vehicle crowd of bench_broadphase (crowd_scene.hpp) on the default
 //   world: the full continuous step (on --threads T, default 1: the node's pool) with the default
 //   budget and without one (ample): the first tick (every contact new) and --ticks - 1 after
-//   (vehicles moved back and forth), ms and the pairs each tier decided.
+//   (vehicles moved back and forth), ms and the pairs each tier decided. --spatial: the same crowd
+//   stored in Z order of its cells (crowd_scene.hpp): what a spatial order of the entities gives.
 // Columns (vehicles, --fixed): budget_ms, pairs (needing a narrow phase, with a verdict), lowered
 // (pairs given a tier below their exact one), contacts, truth (FCL contacts), false_pos, misses,
 // point error median / p95 (m, over the contacts both find that do not touch from the tick's
 // start), detect_ms (our detect, wall, one thread).
-// Usage: bench_budget_error [--vehicles N] [--side M] [--fixed] [--crowd N [--threads T] [--ticks K]] [--csv FILE]
+// Usage: bench_budget_error [--vehicles N] [--side M] [--fixed] [--crowd N [--threads T] [--ticks K] [--spatial]] [--csv FILE]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -229,11 +230,11 @@ int accuracy(int n, double side, bool fixed, std::string csv) {
 }
 
 // The full continuous step in the crowd, with the default budget and without one.
-int crowd(int n, int threads, int ticks, std::string csv) {
+int crowd(int n, int threads, int ticks, bool spatial, std::string csv) {
   auto sc = world::load_scenario(std::string(NPSNET_SOURCE_DIR) + "/scenarios/default.toml");
   world::World w = world::build_world(sc);
   w.ents = world::Entities{};
-  bench::add_crowd(w, n);
+  bench::add_crowd(w, n, spatial);
   for (auto& s : w.ents.snapshots) s = 0;  // background traffic: nobody snapshots, drives or watches it
   const double dt = kTickS;
   std::vector<Vec3> step;
@@ -278,6 +279,7 @@ int crowd(int n, int threads, int ticks, std::string csv) {
 
 int main(int argc, char** argv) {
   int n = 3000, crowd_n = 0, threads = 1, ticks = 4;
+  bool spatial = false;
   double side = 600;
   bool fixed = false;
   std::string csv;
@@ -288,13 +290,14 @@ int main(int argc, char** argv) {
   app.add_option("--crowd", crowd_n, "the full continuous step in an N-vehicle crowd on the default world, with and without the budget");
   app.add_option("--threads", threads, "--crowd: threads of the detector's pool (the node's --threads)")->capture_default_str()->check(CLI::Range(1, core::Jobs::kMaxThreads));
   app.add_option("--ticks", ticks, "--crowd: ticks per budget (tick 0: every contact new)")->capture_default_str()->check(CLI::Range(1, 1000));
+  app.add_flag("--spatial", spatial, "--crowd: the vehicles stored in Z order of their cells (neighbours near in memory)");
   app.add_option("--csv", csv, "where the CSV goes (default: bench/results/...)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
-  if (crowd_n > 0) return crowd(crowd_n, threads, ticks, csv);
+  if (crowd_n > 0) return crowd(crowd_n, threads, ticks, spatial, csv);
   return accuracy(n, side, fixed, csv);
 }
 #endif
