@@ -236,6 +236,18 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
   }
   live_ = n;  // every listed body is in the grid or large; the gone ones are out
   if (large_.size() > std::max(kRebuildLarge, n / 8)) rebuild_ = true;  // the cell no longer fits: next call
+  // fn(p0, p1, to) over [0, count) in ranges on the pool, each into its own list, appended to
+  // `out` in range order (the serial order); one range writes to `out` directly.
+  auto gather = [&](size_t count, size_t grain, std::vector<std::pair<uint32_t, uint32_t>>& out, auto&& fn) {
+    const int k = jobs ? jobs->chunks(count, grain, 4) : 1;
+    if (k <= 1) return fn(size_t{0}, count, out);
+    if (chunk_pairs_.size() < static_cast<size_t>(k)) chunk_pairs_.resize(k);
+    core::run_chunks(jobs, count, grain, [&](int c, size_t p0, size_t p1) {
+      chunk_pairs_[c].clear();
+      fn(p0, p1, chunk_pairs_[c]);
+    }, 4);
+    for (int c = 0; c < k; ++c) out.insert(out.end(), chunk_pairs_[c].begin(), chunk_pairs_[c].end());
+  };
   // 4. Kept pairs: those of two bodies that stayed (per range, concatenated in range order: the
   //    serial order); then the moved bodies' pairs, from the grid.
   auto stayed = [&](const std::pair<uint32_t, uint32_t>& p) { return gone_moved_[p.first] != tick_ && gone_moved_[p.second] != tick_; };
@@ -253,36 +265,20 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
     kept_.clear();
     for (int c = 0; c < kk; ++c) kept_.insert(kept_.end(), chunk_pairs_[c].begin(), chunk_pairs_[c].end());
   }
-  const int kq = jobs ? jobs->chunks(moved_.size(), kQueryGrain, 4) : 1;
-  if (chunk_pairs_.size() < static_cast<size_t>(kq)) chunk_pairs_.resize(kq);
-  core::run_chunks(jobs, moved_.size(), kQueryGrain, [&](int c, size_t m0, size_t m1) {
-    auto& to = chunk_pairs_[c];
-    to.clear();
+  gather(moved_.size(), kQueryGrain, kept_, [&](size_t m0, size_t m1, auto& to) {
     for (size_t m = m0; m < m1; ++m) {
       if (m + kQueryAhead < m1) prefetch_cells(moved_[m + kQueryAhead].cells);
       if (moved_[m].cells.i1 >= moved_[m].cells.i0) query(moved_[m], to);  // (not a large one)
     }
-  }, 4);
-  for (int c = 0; c < kq; ++c) kept_.insert(kept_.end(), chunk_pairs_[c].begin(), chunk_pairs_[c].end());
+  });
   // 5. This tick's pairs: the kept ones whose boxes overlap (per range, concatenated in range
   //    order); the large bodies against every box.
-  auto report = [&](size_t p0, size_t p1, std::vector<std::pair<uint32_t, uint32_t>>& to) {
+  gather(kept_.size(), kKeptGrain, out, [&](size_t p0, size_t p1, auto& to) {
     for (size_t p = p0; p < p1; ++p) {
       const uint32_t i = slot_[kept_[p].first], j = slot_[kept_[p].second];
       if (overlap(boxes[i], boxes[j])) to.emplace_back(std::min(i, j), std::max(i, j));
     }
-  };
-  const int ko = jobs ? jobs->chunks(kept_.size(), kKeptGrain, 4) : 1;
-  if (ko <= 1) {
-    report(0, kept_.size(), out);
-  } else {
-    if (chunk_pairs_.size() < static_cast<size_t>(ko)) chunk_pairs_.resize(ko);
-    core::run_chunks(jobs, kept_.size(), kKeptGrain, [&](int c, size_t p0, size_t p1) {
-      chunk_pairs_[c].clear();
-      report(p0, p1, chunk_pairs_[c]);
-    }, 4);
-    for (int c = 0; c < ko; ++c) out.insert(out.end(), chunk_pairs_[c].begin(), chunk_pairs_[c].end());
-  }
+  });
   large_pairs(boxes, large_, [&](uint32_t j) { return state_[ids[j]] == kLarge; }, out, chunk_pairs_, jobs);
 }
 
