@@ -205,6 +205,10 @@ class Detector {
   // The fixed objects near swept entity i (order_[i]); the moving pair pairs_[p].
   void fixed_contacts(const world::World& w, size_t i, Lane& L);
   void pair_contact(const world::World& w, size_t p, Lane& L);
+  // A hint (core/prefetch.hpp): the cache lines pair_contact(p) reads, in three stages, each
+  // reading what the one before asked for: 0 the pair's entity indices; 1 the two bodies'
+  // sweeps, owners, kinds and ranks, and lo_start_; 2 the episode keys lo_start_ points to.
+  void prefetch_pair(const world::World& w, size_t p, int stage) const;
   void allocate_tiers(const world::World& w);  // scene_tiers.cpp
   void decide_pending(const world::World& w, size_t p, Lane& L);
   // `continuing`: the pair touched last tick; its episode goes on while its bound spheres meet.
@@ -221,6 +225,15 @@ class Detector {
   Options opt_;
   std::vector<uint32_t> order_;         // active entities sorted by x (L1 sweep)
   std::vector<uint64_t> touching_, previous_;  // pair keys in contact this / last tick
+  std::vector<uint64_t> sort_scratch_;         // core::radix_sort's
+  // Where each entity's episodes with moving partners lie in previous_ (sorted): the keys whose
+  // lower index is e are previous_[lo_start_[e] .. lo_start_[e + 1]). Made each tick when
+  // previous_ holds kEpisodeIndexMin keys or more (else empty: a binary search is as quick),
+  // so that a pair's look-up reads two lines, which prefetch_pair asks for ahead.
+  static constexpr size_t kEpisodeIndexMin = 4096;
+  std::vector<uint32_t> lo_start_;
+  void index_episodes(size_t n);          // n: entity slots
+  bool was_touching(int a, int b) const;  // moving pair (a, b) in contact last tick
   std::vector<Contact> candidates_;
   DetectStats stats_;
   // continuous
@@ -270,7 +283,13 @@ class Detector {
   std::vector<Lane> lanes_;
   std::vector<ViewVolume> views_;
   std::vector<Pending> pending_;        // this tick's, in lane order
-  std::vector<uint32_t> pending_order_;
+  struct Importance {  // a pending pair's sort keys (allocate_tiers), by value
+    double closing;
+    uint32_t rank_a, rank_b;  // rank_b: in fixed_rank_ when b_fixed
+    uint32_t pending;         // its index in pending_
+    bool required, b_fixed;
+  };
+  std::vector<Importance> pending_order_;
   std::vector<TierChoice> choices_;
 };
 

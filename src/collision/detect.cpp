@@ -8,6 +8,7 @@
 
 #include "collision/collision.hpp"
 #include "core/constants.hpp"
+#include "core/radix_sort.hpp"
 #include "world/pose.hpp"
 
 namespace npsnet::collision {
@@ -26,7 +27,8 @@ void Detector::detect(const world::World& w, std::vector<Contact>& out) {
   assert(w.valid());
   touching_.clear();
   candidates_.clear();
-  std::sort(previous_.begin(), previous_.end());
+  core::radix_sort(previous_, sort_scratch_);  // 59,000 keys in the 100,000-vehicle crowd
+  index_episodes(w.ents.size());
   if (opt_.method == Method::Thesis) detect_thesis(w);
   else detect_continuous(w);
 
@@ -41,6 +43,26 @@ void Detector::detect(const world::World& w, std::vector<Contact>& out) {
 }
 
 uint64_t contact_key(int a, int b, bool fixed) { return pair_key(a, b, fixed); }
+
+void Detector::index_episodes(size_t n) {
+  lo_start_.clear();
+  if (previous_.size() < kEpisodeIndexMin) return;
+  lo_start_.resize(n + 1);
+  size_t k = 0;  // moving pairs' keys first (no top bit), by lower index, then higher
+  for (size_t e = 0; e <= n; ++e) {
+    while (k < previous_.size() && !(previous_[k] >> 63) && ((previous_[k] >> 31) & 0xffffffffu) < e) ++k;
+    lo_start_[e] = static_cast<uint32_t>(k);
+  }
+}
+
+bool Detector::was_touching(int a, int b) const {
+  const uint64_t key = pair_key(a, b, false);
+  if (lo_start_.empty()) return std::binary_search(previous_.begin(), previous_.end(), key);
+  const size_t lo = static_cast<size_t>(std::min(a, b));
+  for (uint32_t k = lo_start_[lo], end = lo_start_[lo + 1]; k < end; ++k)
+    if (previous_[k] >= key) return previous_[k] == key;
+  return false;
+}
 
 void Detector::detect_thesis(const world::World& w) {
   const auto& ents = w.ents;

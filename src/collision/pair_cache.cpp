@@ -16,6 +16,9 @@ constexpr size_t kKeptGrain = 4096;   // kept pairs per range of the kept pairs'
 // Moved bodies lie in no spatial order: the buckets of the one kQueryAhead later are asked of the
 // cache before a body's grid update or query (a hint: no result changes).
 constexpr size_t kQueryAhead = 4;
+// Kept pairs name bodies in no spatial order: their per-body words are asked of the cache
+// kKeptAhead pairs ahead (the slot, then, half as far ahead, the box the slot names).
+constexpr size_t kKeptAhead = 16;
 constexpr double kMaxCell = 0x1p29;   // a fat box's corners beyond this many cells: large
 }  // namespace
 
@@ -251,16 +254,26 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
   // 4. Kept pairs: those of two bodies that stayed (per range, concatenated in range order: the
   //    serial order); then the moved bodies' pairs, from the grid.
   auto stayed = [&](const std::pair<uint32_t, uint32_t>& p) { return gone_moved_[p.first] != tick_ && gone_moved_[p.second] != tick_; };
+  auto prefetch_stayed = [&](const std::pair<uint32_t, uint32_t>& p) {
+    core::prefetch(&gone_moved_[p.first]), core::prefetch(&gone_moved_[p.second]);
+  };
   const int kk = jobs ? jobs->chunks(kept_.size(), kKeptGrain, 4) : 1;
   if (kk <= 1) {
-    kept_.erase(std::remove_if(kept_.begin(), kept_.end(), [&](const auto& p) { return !stayed(p); }), kept_.end());
+    size_t to = 0;
+    for (size_t p = 0; p < kept_.size(); ++p) {
+      if (p + kKeptAhead < kept_.size()) prefetch_stayed(kept_[p + kKeptAhead]);
+      if (stayed(kept_[p])) kept_[to++] = kept_[p];
+    }
+    kept_.resize(to);
   } else {
     if (chunk_pairs_.size() < static_cast<size_t>(kk)) chunk_pairs_.resize(kk);
     core::run_chunks(jobs, kept_.size(), kKeptGrain, [&](int c, size_t p0, size_t p1) {
       auto& to = chunk_pairs_[c];
       to.clear();
-      for (size_t p = p0; p < p1; ++p)
+      for (size_t p = p0; p < p1; ++p) {
+        if (p + kKeptAhead < p1) prefetch_stayed(kept_[p + kKeptAhead]);
         if (stayed(kept_[p])) to.push_back(kept_[p]);
+      }
     }, 4);
     kept_.clear();
     for (int c = 0; c < kk; ++c) kept_.insert(kept_.end(), chunk_pairs_[c].begin(), chunk_pairs_[c].end());
@@ -275,6 +288,12 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
   //    order); the large bodies against every box.
   gather(kept_.size(), kKeptGrain, out, [&](size_t p0, size_t p1, auto& to) {
     for (size_t p = p0; p < p1; ++p) {
+      if (p + kKeptAhead < p1) core::prefetch(&slot_[kept_[p + kKeptAhead].first]), core::prefetch(&slot_[kept_[p + kKeptAhead].second]);
+      if (p + kKeptAhead / 2 < p1)
+        for (const uint32_t id : {kept_[p + kKeptAhead / 2].first, kept_[p + kKeptAhead / 2].second}) {
+          const Box* b = &boxes[slot_[id]];  // a box may span two lines
+          core::prefetch(b), core::prefetch(reinterpret_cast<const char*>(b + 1) - 1);
+        }
       const uint32_t i = slot_[kept_[p].first], j = slot_[kept_[p].second];
       if (overlap(boxes[i], boxes[j])) to.emplace_back(std::min(i, j), std::max(i, j));
     }

@@ -210,6 +210,41 @@ TEST(Continuous, EpisodeReportedOnceWhileTouching) {
   EXPECT_EQ(c.size(), 1u);
 }
 
+// Thousands of episodes at once: past kEpisodeIndexMin keys the detector finds last tick's
+// episodes through each entity's first key, not a binary search. Each is still reported once;
+// those of bodies moved away end, and begin again (one contact each) when they come back.
+TEST(Continuous, ThousandsOfEpisodesEachReportedOnce) {
+  auto w = test::flat_world();
+  const int side = 40;  // a 40 x 40 lattice, 4 m apart: each tank's sphere meets a score of others
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j) test::add_vehicle(w, test::numbered("v", side * i + j), "m1a1", 400 + 4.0 * i, 400 + 4.0 * j, 0, 0);
+  test::index_fixed(w);
+  collision::Detector d(continuous(0.1, collision::Tier::Sphere));
+  std::vector<collision::Contact> first, c;
+  d.detect(w, first);
+  ASSERT_GE(first.size(), 4096u);  // enough episodes for the indexed look-up
+  d.detect(w, c);
+  EXPECT_EQ(c.size(), 0u);  // all still touching
+  // Every 7th tank driven off, each alone on a 40 m lattice: their episodes end.
+  std::vector<Vec3> home(w.ents.pos.begin(), w.ents.pos.end());
+  std::vector<bool> moved(w.ents.size(), false);
+  for (size_t e = 0, k = 0; e < w.ents.size(); e += 7, ++k) {
+    moved[e] = true;
+    const double x = 1000 + 40.0 * static_cast<double>(k % 20), y = 1000 + 40.0 * static_cast<double>(k / 20);
+    w.ents.pos[e] = Vec3(x, y, w.terrain.height(x, y));
+  }
+  d.detect(w, c);
+  EXPECT_EQ(c.size(), 0u);
+  for (size_t e = 0; e < w.ents.size(); ++e) w.ents.pos[e] = home[e];
+  c.clear();
+  d.detect(w, c);
+  size_t again = 0;  // the first tick's contacts with a moved tank
+  for (const auto& k : first) again += moved[k.a] || moved[k.b];
+  EXPECT_GT(again, 0u);
+  EXPECT_EQ(c.size(), again);
+  for (const auto& k : c) EXPECT_TRUE(moved[k.a] || moved[k.b]) << k.a << " " << k.b;
+}
+
 TEST(Tiers, CheapestTierDecidesAndAForcedTierIsObeyed) {
   // Spheres overlap, hulls do not (the thesis L3 reject case): the sphere tier reports a
   // contact, auto (mesh for two tanks) and hull do not.
