@@ -34,6 +34,12 @@ inline bool overlap(const Box& a, const Box& b) {
   return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] && b.lo[1] <= a.hi[1] &&
          a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];
 }
+// The same answer, every comparison made (no early exit, so no branch): for loops where the
+// answer is as often yes as no.
+inline bool overlap_branchless(const Box& a, const Box& b) {
+  return (a.lo[0] <= b.hi[0]) & (b.lo[0] <= a.hi[0]) & (a.lo[1] <= b.hi[1]) & (b.lo[1] <= a.hi[1]) &
+         (a.lo[2] <= b.hi[2]) & (b.lo[2] <= a.hi[2]);
+}
 // The box of a sphere of radius r swept from c0 to c1.
 inline Box swept_box(const Vec3& c0, const Vec3& c1, double r) {
   Box b;

@@ -18,7 +18,7 @@ constexpr size_t kKeptGrain = 4096;   // kept pairs per range of the kept pairs'
 constexpr size_t kQueryAhead = 4;
 // Kept pairs name bodies in no spatial order: their per-body words are asked of the cache
 // kKeptAhead pairs ahead (the slot, then, half as far ahead, the box the slot names).
-constexpr size_t kKeptAhead = 16;
+constexpr size_t kKeptAhead = 32;
 constexpr double kMaxCell = 0x1p29;   // a fat box's corners beyond this many cells: large
 }  // namespace
 
@@ -287,16 +287,24 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
   // 5. This tick's pairs: the kept ones whose boxes overlap (per range, concatenated in range
   //    order); the large bodies against every box.
   gather(kept_.size(), kKeptGrain, out, [&](size_t p0, size_t p1, auto& to) {
+    // Every pair is written and only those that overlap kept (no branch on the test: about half
+    // the kept pairs overlap in a crowd, a branch the predictor would miss).
+    size_t n = to.size();
+    to.resize(n + (p1 - p0));
+    const std::pair<uint32_t, uint32_t>* kept = kept_.data();
+    const uint32_t* slot = slot_.data();
     for (size_t p = p0; p < p1; ++p) {
-      if (p + kKeptAhead < p1) core::prefetch(&slot_[kept_[p + kKeptAhead].first]), core::prefetch(&slot_[kept_[p + kKeptAhead].second]);
+      if (p + kKeptAhead < p1) core::prefetch(&slot[kept[p + kKeptAhead].first]), core::prefetch(&slot[kept[p + kKeptAhead].second]);
       if (p + kKeptAhead / 2 < p1)
-        for (const uint32_t id : {kept_[p + kKeptAhead / 2].first, kept_[p + kKeptAhead / 2].second}) {
-          const Box* b = &boxes[slot_[id]];  // a box may span two lines
+        for (const uint32_t id : {kept[p + kKeptAhead / 2].first, kept[p + kKeptAhead / 2].second}) {
+          const Box* b = &boxes[slot[id]];  // a box may span two lines
           core::prefetch(b), core::prefetch(reinterpret_cast<const char*>(b + 1) - 1);
         }
-      const uint32_t i = slot_[kept_[p].first], j = slot_[kept_[p].second];
-      if (overlap(boxes[i], boxes[j])) to.emplace_back(std::min(i, j), std::max(i, j));
+      const uint32_t i = slot[kept[p].first], j = slot[kept[p].second];
+      to[n] = {std::min(i, j), std::max(i, j)};
+      n += overlap_branchless(boxes[i], boxes[j]);
     }
+    to.resize(n);
   });
   large_pairs(boxes, large_, [&](uint32_t j) { return state_[ids[j]] == kLarge; }, out, chunk_pairs_, jobs);
 }
