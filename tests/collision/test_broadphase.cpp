@@ -37,6 +37,31 @@ TEST(MovingGrid, AgreesWithBruteForceOnRandomScenes) {
 
 // The grid's mean extent sums extents in whole 1/256 m: in_256ths is llround(e * 256) for every
 // float extent, halves (k + 1/2) / 256 and the ends of its exact range included.
+// overlap_branchless (the kept broad phase's report) answers as overlap: boxes that touch at a
+// face count, and a NaN corner meets nothing.
+TEST(BoxOverlap, BranchlessAnswersAsTheEarlyExitTest) {
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> q(0, 8);  // corners on a coarse lattice: many exact touches
+  auto box = [&] {
+    collision::Box b;
+    for (int k = 0; k < 3; ++k) {
+      const int lo = q(rng), hi = lo + q(rng);
+      b.lo[k] = static_cast<float>(lo), b.hi[k] = static_cast<float>(hi);
+    }
+    return b;
+  };
+  int yes = 0;
+  for (int i = 0; i < 20000; ++i) {
+    collision::Box a = box(), b = box();
+    if (i % 97 == 0) a.lo[i % 3] = std::nanf("");
+    const bool want = collision::overlap(a, b);
+    yes += want;
+    ASSERT_EQ(collision::overlap_branchless(a, b), want) << i;
+  }
+  EXPECT_GT(yes, 2000);
+  EXPECT_LT(yes, 18000);
+}
+
 TEST(MovingGrid, ExtentsIn256thsRoundAsLlround) {
   std::mt19937 rng(12);
   std::uniform_int_distribution<uint32_t> bits(0, 0x7f7fffffu);  // every finite float >= 0
