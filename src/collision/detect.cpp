@@ -28,9 +28,12 @@ void Detector::detect(const world::World& w, std::vector<Contact>& out) {
   touching_.clear();
   candidates_.clear();
   core::radix_sort(previous_, sort_scratch_);  // 59,000 keys in the 100,000-vehicle crowd
-  index_episodes(w.ents.size());
-  if (opt_.method == Method::Thesis) detect_thesis(w);
-  else detect_continuous(w);
+  if (opt_.method == Method::Thesis) {
+    detect_thesis(w);
+  } else {
+    index_episodes(w.ents.size());  // (the thesis's few pairs need no index)
+    detect_continuous(w);
+  }
 
   // One event per contact episode: report only pairs not touching last tick.
   for (const Contact& k : candidates_) {
