@@ -328,10 +328,7 @@ void Detector::prefetch_pair(const world::World& w, size_t p, int stage) const {
     return;
   }
   for (const uint32_t s : {i, j}) {
-    for (const Vec3* v : {&c0_[s], &c1_[s]}) {  // a Vec3 may span two lines
-      core::prefetch(v);
-      core::prefetch(reinterpret_cast<const char*>(v + 1) - 1);
-    }
+    core::prefetch_object(&c0_[s]), core::prefetch_object(&c1_[s]);  // a Vec3 may span two lines
     core::prefetch(&r_sphere_[s]), core::prefetch(&r_bound_[s]);
     const uint32_t e = order_[s];
     core::prefetch(&w.ents.owner[e]), core::prefetch(&w.ents.kind[e]), core::prefetch(&rank_.ranks()[e]);

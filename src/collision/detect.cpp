@@ -48,9 +48,11 @@ void Detector::detect(const world::World& w, std::vector<Contact>& out) {
 uint64_t contact_key(int a, int b, bool fixed) { return pair_key(a, b, fixed); }
 
 void Detector::index_episodes(size_t n) {
-  lo_start_.clear();
-  if (previous_.size() < kEpisodeIndexMin) return;
-  lo_start_.resize(n + 1);
+  if (previous_.size() < kEpisodeIndexMin) {
+    lo_start_.clear();
+    return;
+  }
+  lo_start_.resize(n + 1);  // (same size as last tick: no fill; the loop writes every entry)
   size_t k = 0;  // moving pairs' keys first (no top bit), by lower index, then higher
   for (size_t e = 0; e <= n; ++e) {
     while (k < previous_.size() && !(previous_[k] >> 63) && ((previous_[k] >> 31) & 0xffffffffu) < e) ++k;

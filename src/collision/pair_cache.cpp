@@ -296,10 +296,8 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
     for (size_t p = p0; p < p1; ++p) {
       if (p + kKeptAhead < p1) core::prefetch(&slot[kept[p + kKeptAhead].first]), core::prefetch(&slot[kept[p + kKeptAhead].second]);
       if (p + kKeptAhead / 2 < p1)
-        for (const uint32_t id : {kept[p + kKeptAhead / 2].first, kept[p + kKeptAhead / 2].second}) {
-          const Box* b = &boxes[slot[id]];  // a box may span two lines
-          core::prefetch(b), core::prefetch(reinterpret_cast<const char*>(b + 1) - 1);
-        }
+        for (const uint32_t id : {kept[p + kKeptAhead / 2].first, kept[p + kKeptAhead / 2].second})
+          core::prefetch_object(&boxes[slot[id]]);  // a box may span two lines
       const uint32_t i = slot[kept[p].first], j = slot[kept[p].second];
       to[n] = {std::min(i, j), std::max(i, j)};
       n += overlap_branchless(boxes[i], boxes[j]);

@@ -16,4 +16,12 @@ inline void prefetch(const void* p) {
 #endif
 }
 
+// Both lines an object may span (one of 24 bytes, say, at an 8-byte boundary): its first byte's
+// and its last's.
+template <class T>
+inline void prefetch_object(const T* p) {
+  prefetch(p);
+  prefetch(reinterpret_cast<const char*>(p + 1) - 1);
+}
+
 }  // namespace npsnet::core
