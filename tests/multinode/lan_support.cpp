@@ -1,5 +1,7 @@
 #include "lan_support.hpp"
 
+#include "support/scratch.hpp"
+
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -31,14 +33,7 @@ std::filesystem::path npsnet_binary() {
   return std::filesystem::path(NPSNET_BINARY_DIR) / "npsnet";
 }
 
-std::filesystem::path fresh_dir(const std::string& tag) {
-  std::random_device rd;
-  auto d = std::filesystem::temp_directory_path() /
-           ("npsnet_" + tag + "_" + std::to_string(::getpid()) + "_" + std::to_string(rd() % 1000000));
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d;
-}
+std::filesystem::path fresh_dir(const std::string& tag) { return npsnet::test::fresh_dir(tag); }
 
 Procs::~Procs() {
   for (int pid : running_) {

@@ -13,12 +13,7 @@ using namespace npsnet;
 namespace fs = std::filesystem;
 
 namespace {
-fs::path fresh_dir(const std::string& name) {
-  const auto d = npsnet::test::scratch_dir() / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+using npsnet::test::fresh_dir;
 // Every line of `file` is one complete JSON object; returns them.
 std::vector<nlohmann::json> json_lines(const fs::path& file) {
   std::vector<nlohmann::json> out;

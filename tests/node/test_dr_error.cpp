@@ -19,12 +19,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-fs::path fresh_dir(const std::string& name) {
-  const auto d = test::scratch_dir() / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+using test::fresh_dir;
 json track(long frame, const std::string& id, const char* source, double x, double y, double z) {
   return {{"event", "track"}, {"t", frame * 0.1}, {"frame", frame}, {"id", id}, {"source", source}, {"pos", {x, y, z}}};
 }

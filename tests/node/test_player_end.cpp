@@ -20,12 +20,7 @@ using namespace npsnet;
 using nlohmann::json;
 
 namespace {
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / "npsnet-tests" / ("player-end-" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+std::filesystem::path fresh_dir(const std::string& name) { return test::fresh_dir("player-end-" + name); }
 // Every line of an event log, parsed; fails the test on a line that is not whole JSON.
 std::vector<json> read_log(const std::filesystem::path& f) {
   std::vector<json> out;

@@ -6,12 +6,12 @@
 
 #include <filesystem>
 #include <fstream>
-#include <random>
 
 #include "net/codec.hpp"
 #include "record/capture_check.hpp"
 #include "record/pcap_file.hpp"
 #include "record/replayer.hpp"
+#include "support/scratch.hpp"
 
 namespace {
 
@@ -19,10 +19,7 @@ using namespace npsnet::record;
 namespace fs = std::filesystem;
 
 fs::path temp(const std::string& name) {
-  std::random_device rd;
-  auto d = fs::temp_directory_path() / ("npsnet_pcap_" + std::to_string(rd() % 1000000));
-  fs::create_directories(d);
-  return d / name;
+  return npsnet::test::fresh_dir(::testing::UnitTest::GetInstance()->current_test_info()->name()) / name;
 }
 
 std::vector<std::uint8_t> entity_state(std::uint16_t entity, std::uint8_t exercise = 1) {

@@ -17,6 +17,7 @@
 #include "render/shader.hpp"
 #include "render/terrain_mesh.hpp"
 #include "render/view.hpp"
+#include "support/scratch.hpp"
 #include "world/error.hpp"
 
 using namespace npsnet;
@@ -66,12 +67,7 @@ int count_leafy(const std::vector<uint8_t>& px, int w, int h) {
   return n;
 }
 
-fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("npsnet_render_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir(const std::string& name) { return npsnet::test::fresh_dir("render_" + name); }
 
 }  // namespace
 

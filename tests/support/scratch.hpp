@@ -1,5 +1,7 @@
 // Scratch files for tests: one folder per test process, so tests that ctest runs side by side
-// (-j2) never share a file. Removed when the process ends (set NPSNET_KEEP_TEST_FILES=1 to keep).
+// (-j2) never share a file. Removed when the process ends (set NPSNET_KEEP_TEST_FILES=1 to keep);
+// a child made by fork() must leave by _exit, or its exit removes the folder under its parent.
+// fresh_dir(name): an empty folder `name` in it (emptied if a test before made one).
 #pragma once
 #include <unistd.h>
 
@@ -23,6 +25,13 @@ inline const std::filesystem::path& scratch_dir() {
   };
   static const Dir dir;
   return dir.path;
+}
+
+inline std::filesystem::path fresh_dir(const std::string& name) {
+  const std::filesystem::path d = scratch_dir() / name;
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
 }
 
 }  // namespace npsnet::test

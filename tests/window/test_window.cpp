@@ -33,9 +33,7 @@ TEST(Window, HeldKeysDriveTurnAndCollide) {
   if (!std::getenv("DISPLAY")) GTEST_SKIP() << "no display (ctest runs this under xvfb-run)";
   ASSERT_EQ(sh("command -v xdotool >/dev/null && command -v import >/dev/null"), 0)
       << "xdotool and ImageMagick are needed (scripts/install-deps.sh)";
-  const auto dir = npsnet::test::scratch_dir() / "window";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const auto dir = npsnet::test::fresh_dir("window");
   const std::string events = (dir / "events.jsonl").string(), rec = (dir / "input.jsonl").string(),
                     out = (dir / "out.txt").string();
   const std::string bin = std::string(NPSNET_BINARY_DIR) + "/npsnet";

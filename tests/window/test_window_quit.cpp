@@ -27,9 +27,7 @@ std::string first_line(const std::string& cmd) {
 
 // Runs the window scenario for up to 60 s, drives 1 s, then `how` ends it: "esc" or "close".
 void quit_by(const std::string& how, const std::string& expected_reason) {
-  const auto dir = std::filesystem::temp_directory_path() / "npsnet-tests" / ("window-quit-" + how);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const auto dir = test::fresh_dir("window-quit-" + how);
   const std::string events = (dir / "events.jsonl").string(), out = (dir / "out.txt").string();
   const pid_t pid = test::spawn_logged({std::string(NPSNET_BINARY_DIR) + "/npsnet", "run", "--window", "--scenario",
                                         test::source("tests/node/data/window.toml").string(), "--seconds", "60",

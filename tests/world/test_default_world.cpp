@@ -14,9 +14,8 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include "core/constants.hpp"
+#include "support/scratch.hpp"
 #include "world/terrain.hpp"
 
 using namespace npsnet;
@@ -246,7 +245,7 @@ TEST_F(DefaultWorld, TelephonePolesFollowARoad) {
 TEST(DefaultWorldGenerator, ReproducesTheBundledFiles) {
   const fs::path exe = fs::path(NPSNET_BINARY_DIR) / "tools" / "make_default_world";
   if (!fs::exists(exe)) GTEST_SKIP() << "generator not built: " << exe;
-  const fs::path out = fs::temp_directory_path() / ("npsnet_default_world_" + std::to_string(::getpid()));
+  const fs::path out = npsnet::test::scratch_dir() / "default_world";
   fs::remove_all(out);
   std::string cmd;  // appends: GCC 12 warns falsely on "literal" + std::string
   cmd.append("\"").append(exe.string()).append("\" \"").append(out.string()).append("\" > \"");

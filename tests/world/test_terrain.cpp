@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "support/gdal_read.hpp"
+#include "support/scratch.hpp"
 #include "world/error.hpp"
 #include "world/terrain.hpp"
 
@@ -23,12 +24,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() /
-                     ("npsnet_terrain_test_" + std::to_string(::testing::UnitTest::GetInstance()
-                                                                  ->random_seed()) +
-                      "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  fs::create_directories(d);
-  return d;
+  return npsnet::test::fresh_dir(::testing::UnitTest::GetInstance()->current_test_info()->name());
 }
 
 // A plane h = a + b x + c y sampled on posts.
