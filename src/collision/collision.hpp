@@ -118,7 +118,8 @@ struct ViewVolume {
   }
   static ViewVolume box(const Vec3& lo, const Vec3& hi);  // an axis-aligned box (tests)
 };
-// One pair's tier choice of the last tick (tests, benchmarks).
+// One pair's tier choice of the last tick (tests, benchmarks). tier_choices(): most important
+// first until the budget is spent, the rest (all at the sphere tier) after them in no set order.
 struct TierChoice {
   int a = -1, b = -1;
   bool b_fixed = false, required = false;
@@ -211,11 +212,15 @@ class Detector {
   void prefetch_pair(const world::World& w, size_t p, int stage) const;
   void allocate_tiers(const world::World& w);  // scene_tiers.cpp
   void decide_pending(const world::World& w, size_t p, Lane& L);
-  // `continuing`: the pair touched last tick; its episode goes on while its bound spheres meet.
-  // `defer`: the narrow phase is left for allocate_tiers (auto tier): false, with *defer filled.
-  bool moving_pair(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa, double rba,
-                   const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, bool continuing, Contact& k, Lane& L,
-                   Pending* defer = nullptr);
+  // A moving pair, first its sweep: the tier it needs (tier; the sphere for a munition) and the
+  // sweep of its spheres, or of its bounds when a tier above the sphere may be asked (counted).
+  Trace pair_sweep(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa, double rba,
+                   const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, Tier& tier, Lane& L) const;
+  // Then, after the sweep h hit, for a pair not in a running episode (one that is goes on while
+  // its bounds meet, and needs no more): true with the contact k by that tier. `defer`: the
+  // narrow phase is left for allocate_tiers (auto tier): false, with *defer filled.
+  bool pair_hit(const world::World& w, int a, int b, const Trace& h, Tier tier, Contact& k, Lane& L,
+                Pending* defer = nullptr);
   // Narrow phase of one moving pair (entities a, b) beyond the sweep: true with a contact.
   // Sweeps the posed shapes from the first touch of the bounding spheres ([t_in, t_out]) up to
   // `tier`, cheapest first; true with the time, point and normal of the first contact.

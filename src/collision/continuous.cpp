@@ -125,29 +125,29 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
   return true;
 }
 
-bool Detector::moving_pair(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa,
-                           double rba, const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, bool continuing,
-                           Contact& k, Lane& L, Pending* defer) {
+Trace Detector::pair_sweep(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa, double rba,
+                           const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, Tier& tier, Lane& L) const {
   const auto& ents = w.ents;
-  const bool mun = w.is_munition(a) || w.is_munition(b);
-  const Tier tier = mun ? Tier::Sphere
-                        : opt_.tier != Tier::Auto ? opt_.tier
-                                                  : std::min(top_tier(w.kinds[ents.kind[a]]), top_tier(w.kinds[ents.kind[b]]));
+  tier = w.is_munition(a) || w.is_munition(b) ? Tier::Sphere
+         : opt_.tier != Tier::Auto            ? opt_.tier
+                                               : std::min(top_tier(w.kinds[ents.kind[a]]), top_tier(w.kinds[ents.kind[b]]));
   const bool sphere = tier == Tier::Sphere;
   ++L.stats.sweep_pairs;
   const Trace h = sphere_sweep(c0a, c1a, sphere ? rsa : rba, c0b, c1b, sphere ? rsb : rbb);
-  if (!h.hit) {
-    ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
-    return false;
-  }
-  ++L.stats.sweep_hits;
+  if (!h.hit) ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
+  else ++L.stats.sweep_hits;
+  return h;
+}
+
+bool Detector::pair_hit(const world::World& w, int a, int b, const Trace& h, Tier tier, Contact& k, Lane& L,
+                        Pending* defer) {
+  const auto& ents = w.ents;
   k.a = a, k.b = b, k.b_fixed = false, k.dt_s = opt_.dt_s;
-  if (sphere || continuing) {  // a continuing episode needs no more than its bound
+  if (tier == Tier::Sphere) {
     ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
     static_cast<Trace&>(k) = h;
-    k.method = method_of(Tier::Sphere, false);
+    k.method = w.is_munition(a) || w.is_munition(b) ? "continuous-munition" : method_of(Tier::Sphere, false);
     k.tier = tier_name(Tier::Sphere);
-    if (mun) k.method = "continuous-munition";
     return true;
   }
   if (defer) {  // auto tier: allocate_tiers gives it its tier first
@@ -189,7 +189,9 @@ bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
     rb[s] = top == Tier::Sphere ? rs[s] : std::max(rs[s], sh.bound_radius * 1.0001 + 1e-3);
   }
   Lane& L = lane(0);
-  const bool hit = moving_pair(w, a, b, c0[0], c1[0], rs[0], rb[0], c0[1], c1[1], rs[1], rb[1], false, k, L);
+  Tier tier;
+  const Trace h = pair_sweep(w, a, b, c0[0], c1[0], rs[0], rb[0], c0[1], c1[1], rs[1], rb[1], tier, L);
+  const bool hit = h.hit && pair_hit(w, a, b, h, tier, k, L);
   merge_lanes(1);
   return hit;
 }
@@ -345,12 +347,21 @@ void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
   if (w.is_munition(a) && w.is_munition(b)) return;
   // Canonical order by id rank, so that the answer does not depend on where entities are stored.
   if (rank_.ranks()[b] < rank_.ranks()[a]) std::swap(a, b), std::swap(ia, ib);
+  Tier tier;
+  const Trace h = pair_sweep(w, a, b, c0_[ia], c1_[ia], r_sphere_[ia], r_bound_[ia], c0_[ib], c1_[ib], r_sphere_[ib],
+                             r_bound_[ib], tier, L);
+  if (!h.hit) return;
+  // A running episode goes on while the bounds meet (its key) but reports nothing: detect() would
+  // drop its contact, so none is made (in a crowd of overlapping vehicles, most of the pairs).
+  if (was_touching(a, b)) {
+    ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];  // decided by its bounds: the sphere tier
+    L.touching.push_back(contact_key(a, b, false));
+    return;
+  }
   Contact k;
-  const bool continuing = was_touching(a, b);
   Pending q;
   q.k.a = -1;
-  if (!moving_pair(w, a, b, c0_[ia], c1_[ia], r_sphere_[ia], r_bound_[ia], c0_[ib], c1_[ib], r_sphere_[ib],
-                   r_bound_[ib], continuing, k, L, opt_.tier == Tier::Auto ? &q : nullptr)) {
+  if (!pair_hit(w, a, b, h, tier, k, L, opt_.tier == Tier::Auto ? &q : nullptr)) {
     if (q.k.a >= 0) {  // deferred to allocate_tiers
       q.ia = static_cast<uint32_t>(ia), q.ib = static_cast<uint32_t>(ib);
       L.pending.push_back(q);
@@ -358,9 +369,7 @@ void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
     return;
   }
   L.touching.push_back(contact_key(a, b, false));
-  // A running episode goes on (its key above) but reports nothing: detect() would drop its
-  // contact, so it is not made (in a crowd of overlapping vehicles, most of the pairs).
-  if (!continuing) L.candidates.push_back(k);
+  L.candidates.push_back(k);
 }
 
 void Detector::decide_pending(const world::World& w, size_t p, Lane& L) {

@@ -40,19 +40,40 @@ void Detector::allocate_tiers(const world::World& w) {
   const auto& rank = rank_.ranks();
   const auto& fixed_rank = fixed_rank_.ranks();
   pending_order_.resize(pending_.size());
+  size_t required = 0;
   for (uint32_t i = 0; i < pending_order_.size(); ++i) {
     const Pending& q = pending_[i];
     pending_order_[i] = {q.closing, rank[q.k.a], q.k.b_fixed ? fixed_rank[q.k.b] : rank[q.k.b], i, q.required, q.k.b_fixed};
+    required += q.required;
   }
-  std::sort(pending_order_.begin(), pending_order_.end(), [](const Importance& x, const Importance& y) {
+  auto more_important = [](const Importance& x, const Importance& y) {
     if (x.required != y.required) return x.required;
     if (x.closing != y.closing) return x.closing > y.closing;
     if (x.rank_a != y.rank_a) return x.rank_a < y.rank_a;
     if (x.b_fixed != y.b_fixed) return x.b_fixed < y.b_fixed;
     return x.rank_b < y.rank_b;
-  });
+  };
+  // Only a prefix needs its order: past the required pairs, a pair either gets a tier above the
+  // sphere (charged at least kCheapest) or finds none fits; from then on the budget left is below
+  // kCheapest, so every pair after it gets the sphere tier whatever its place (choices_ lists
+  // them in no particular order). The prefix: the required pairs and as many as the budget could
+  // pay for at kCheapest, sorted (nth_element, then sort), and sorted further if it runs out first.
+  constexpr double kCheapest = kTierCostUs[static_cast<int>(Tier::Box)];
+  static_assert(kCheapest <= kTierCostUs[static_cast<int>(Tier::Hull)] && kCheapest <= kTierCostUs[static_cast<int>(Tier::Mesh)]);
+  const auto first = pending_order_.begin();
+  const size_t n = pending_order_.size();
+  size_t sorted = 0;  // pending_order_[0, sorted) is in order, and before every later one
+  auto sort_to = [&](size_t k) {
+    k = std::min(k, n);
+    if (k < n) std::nth_element(first + sorted, first + k, pending_order_.end(), more_important);
+    std::sort(first + sorted, first + k, more_important);
+    sorted = k;
+  };
   double left_us = opt_.budget_ms * 1000.0;
-  for (const Importance& o : pending_order_) {
+  sort_to(required + static_cast<size_t>(left_us > 0 ? std::min(left_us / kCheapest, 1e9) : 0.0) + 16);
+  for (size_t i = 0; i < n; ++i) {
+    if (i == sorted && (i < required || left_us >= kCheapest)) sort_to(2 * sorted);
+    const Importance& o = pending_order_[i];
     Pending& q = pending_[o.pending];
     Tier t = q.exact;
     if (!q.required)
