@@ -208,14 +208,17 @@ class Detector {
   void pair_contact(const world::World& w, size_t p, Lane& L);
   // A hint (core/prefetch.hpp): the cache lines pair_contact(p) reads, in three stages, each
   // reading what the one before asked for: 0 the pair's entity indices; 1 the two bodies'
-  // sweeps, owners, kinds and ranks, and lo_start_; 2 the episode keys lo_start_ points to.
+  // sweeps, owners, kinds, ranks and velocities (a pair's closing speed when it is left to
+  // allocate_tiers), and lo_start_; 2 the episode keys lo_start_ points to.
   void prefetch_pair(const world::World& w, size_t p, int stage) const;
   void allocate_tiers(const world::World& w);  // scene_tiers.cpp
   void decide_pending(const world::World& w, size_t p, Lane& L);
   // A moving pair, first its sweep: the tier it needs (tier; the sphere for a munition) and the
   // sweep of its spheres, or of its bounds when a tier above the sphere may be asked (counted).
+  // hit_only: sphere_sweep's hit_only (the rest of the trace is asked again after, if needed).
   Trace pair_sweep(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa, double rba,
-                   const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, Tier& tier, Lane& L) const;
+                   const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, Tier& tier, Lane& L,
+                   bool hit_only = false) const;
   // Then, after the sweep h hit, for a pair not in a running episode (one that is goes on while
   // its bounds meet, and needs no more): true with the contact k by that tier. `defer`: the
   // narrow phase is left for allocate_tiers (auto tier): false, with *defer filled.

@@ -126,14 +126,15 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
 }
 
 Trace Detector::pair_sweep(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa, double rba,
-                           const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, Tier& tier, Lane& L) const {
+                           const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, Tier& tier, Lane& L,
+                           bool hit_only) const {
   const auto& ents = w.ents;
   tier = w.is_munition(a) || w.is_munition(b) ? Tier::Sphere
          : opt_.tier != Tier::Auto            ? opt_.tier
                                                : std::min(top_tier(w.kinds[ents.kind[a]]), top_tier(w.kinds[ents.kind[b]]));
   const bool sphere = tier == Tier::Sphere;
   ++L.stats.sweep_pairs;
-  const Trace h = sphere_sweep(c0a, c1a, sphere ? rsa : rba, c0b, c1b, sphere ? rsb : rbb);
+  const Trace h = sphere_sweep(c0a, c1a, sphere ? rsa : rba, c0b, c1b, sphere ? rsb : rbb, hit_only);
   if (!h.hit) ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
   else ++L.stats.sweep_hits;
   return h;
@@ -334,6 +335,7 @@ void Detector::prefetch_pair(const world::World& w, size_t p, int stage) const {
     core::prefetch(&r_sphere_[s]), core::prefetch(&r_bound_[s]);
     const uint32_t e = order_[s];
     core::prefetch(&w.ents.owner[e]), core::prefetch(&w.ents.kind[e]), core::prefetch(&rank_.ranks()[e]);
+    core::prefetch_object(&w.ents.vel[e]);  // a pair left to allocate_tiers: its closing speed
   }
   if (!lo_start_.empty()) core::prefetch(&lo_start_[lo]);
 }
@@ -348,9 +350,10 @@ void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
   // Canonical order by id rank, so that the answer does not depend on where entities are stored.
   if (rank_.ranks()[b] < rank_.ranks()[a]) std::swap(a, b), std::swap(ia, ib);
   Tier tier;
-  const Trace h = pair_sweep(w, a, b, c0_[ia], c1_[ia], r_sphere_[ia], r_bound_[ia], c0_[ib], c1_[ib], r_sphere_[ib],
-                             r_bound_[ib], tier, L);
-  if (!h.hit) return;
+  if (!pair_sweep(w, a, b, c0_[ia], c1_[ia], r_sphere_[ia], r_bound_[ia], c0_[ib], c1_[ib], r_sphere_[ib], r_bound_[ib],
+                  tier, L, true)
+           .hit)
+    return;
   // A running episode goes on while the bounds meet (its key) but reports nothing: detect() would
   // drop its contact, so none is made (in a crowd of overlapping vehicles, most of the pairs).
   if (was_touching(a, b)) {
@@ -358,6 +361,9 @@ void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
     L.touching.push_back(contact_key(a, b, false));
     return;
   }
+  const bool sphere = tier == Tier::Sphere;  // the whole trace: its times, point and normal
+  const Trace h = sphere_sweep(c0_[ia], c1_[ia], sphere ? r_sphere_[ia] : r_bound_[ia], c0_[ib], c1_[ib],
+                               sphere ? r_sphere_[ib] : r_bound_[ib]);
   Contact k;
   Pending q;
   q.k.a = -1;

@@ -6,7 +6,8 @@
 #include <stdexcept>
 
 namespace npsnet::collision {
-Trace sphere_sweep(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, const Vec3& b1, double rb) {
+Trace sphere_sweep(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, const Vec3& b1, double rb,
+                   bool hit_only) {
   if (!finite(a0) || !finite(a1) || !finite(b0) || !finite(b1) || !std::isfinite(ra) || !std::isfinite(rb))
     throw std::invalid_argument("sphere_sweep: position or radius is not finite (NaN or infinite input)");
   if (ra < 0 || rb < 0) throw std::invalid_argument("sphere_sweep: negative radius");
@@ -22,6 +23,7 @@ Trace sphere_sweep(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, co
   if (C < 0) {  // overlapping at the start
     h.hit = h.started_inside = true;
     h.fraction = 0;
+    if (hit_only) return h;
     h.exit_fraction = A > 0 ? std::min(1.0, (-B + std::sqrt(B * B - A * C)) / A) : 1.0;
   } else {
     if (A <= 0 || B >= 0) return h;  // no relative motion, or moving apart (or tangent at t=0)
@@ -33,6 +35,7 @@ Trace sphere_sweep(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, co
     if (t > 1) return h;
     h.hit = true;
     h.fraction = t;
+    if (hit_only) return h;
     h.exit_fraction = std::min(1.0, (-B + s) / A);
   }
   const Vec3 ca = a0 + h.fraction * (a1 - a0), cb = b0 + h.fraction * (b1 - b0);

@@ -14,6 +14,9 @@ namespace npsnet::collision {
 // Touching exactly (grazing, |d| = R at one instant) is a hit with exit_fraction = fraction. With no relative
 // motion the spheres either overlap for the whole tick (started_inside) or never meet. When the
 // centres coincide the normal is the relative velocity's direction, or +x without one.
-Trace sphere_sweep(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, const Vec3& b1, double rb);
+// hit_only: the same hit, started_inside and fraction, the rest left at Trace's defaults (a
+// running episode asks only whether its bounds still meet).
+Trace sphere_sweep(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, const Vec3& b1, double rb,
+                   bool hit_only = false);
 
 }  // namespace npsnet::collision

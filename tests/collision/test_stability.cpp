@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "collision/collision.hpp"
 #include "support/fixture.hpp"
@@ -41,6 +42,27 @@ TEST(Stability, ZeroRelativeVelocity) {
   const auto h = sphere_sweep(Vec3(0, 0, 0), Vec3(5, 0, 0), 1, Vec3(1, 0, 0), Vec3(6, 0, 0), 1);
   EXPECT_TRUE(h.hit && h.started_inside);
   EXPECT_EQ(h.exit_fraction, 1.0);
+}
+
+TEST(Stability, HitOnlySweepAnswersAsTheWholeSweep) {
+  // Random pairs on a coarse lattice (many exact touches, coincident and resting spheres among
+  // them): the hit-only sweep's hit, started_inside and fraction are the whole sweep's, bit for bit.
+  std::mt19937 rng(13);
+  std::uniform_int_distribution<int> q(-8, 8), rq(0, 6);
+  auto p = [&] { return Vec3(q(rng) * 0.5, q(rng) * 0.5, q(rng) * 0.25); };
+  int hits = 0, inside = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Vec3 a0 = p(), b0 = p();
+    const Vec3 a1 = k % 3 ? p() : a0, b1 = k % 5 ? p() : b0;
+    const double ra = rq(rng) * 0.5, rb = rq(rng) * 0.5;
+    const auto whole = sphere_sweep(a0, a1, ra, b0, b1, rb), only = sphere_sweep(a0, a1, ra, b0, b1, rb, true);
+    ASSERT_EQ(only.hit, whole.hit) << k;
+    ASSERT_EQ(only.started_inside, whole.started_inside) << k;
+    ASSERT_EQ(only.fraction, whole.fraction) << k;
+    hits += whole.hit, inside += whole.started_inside;
+  }
+  EXPECT_GT(hits, 2000);
+  EXPECT_GT(hits - inside, 500) << "meetings within the tick, not only overlaps at its start";
 }
 
 TEST(Stability, CoincidentCentresGiveAUnitNormal) {
