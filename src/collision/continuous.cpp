@@ -29,6 +29,10 @@ const char* method_of(Tier t, bool fixed) {
   }
 }
 
+// A moving body's radius in its pair's sweep: its sphere's at the sphere tier, else its bound's
+// (a tier above may be asked).
+double swept_radius(Tier tier, double r_sphere, double r_bound) { return tier == Tier::Sphere ? r_sphere : r_bound; }
+
 }  // namespace
 
 std::vector<Shape> make_shapes(const world::World& w) {
@@ -132,9 +136,8 @@ Trace Detector::pair_sweep(const world::World& w, int a, int b, const Vec3& c0a,
   tier = w.is_munition(a) || w.is_munition(b) ? Tier::Sphere
          : opt_.tier != Tier::Auto            ? opt_.tier
                                                : std::min(top_tier(w.kinds[ents.kind[a]]), top_tier(w.kinds[ents.kind[b]]));
-  const bool sphere = tier == Tier::Sphere;
   ++L.stats.sweep_pairs;
-  const Trace h = sphere_sweep(c0a, c1a, sphere ? rsa : rba, c0b, c1b, sphere ? rsb : rbb, hit_only);
+  const Trace h = sphere_sweep(c0a, c1a, swept_radius(tier, rsa, rba), c0b, c1b, swept_radius(tier, rsb, rbb), hit_only);
   if (!h.hit) ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
   else ++L.stats.sweep_hits;
   return h;
@@ -361,9 +364,8 @@ void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
     L.touching.push_back(contact_key(a, b, false));
     return;
   }
-  const bool sphere = tier == Tier::Sphere;  // the whole trace: its times, point and normal
-  const Trace h = sphere_sweep(c0_[ia], c1_[ia], sphere ? r_sphere_[ia] : r_bound_[ia], c0_[ib], c1_[ib],
-                               sphere ? r_sphere_[ib] : r_bound_[ib]);
+  const Trace h = sphere_sweep(c0_[ia], c1_[ia], swept_radius(tier, r_sphere_[ia], r_bound_[ia]), c0_[ib], c1_[ib],
+                               swept_radius(tier, r_sphere_[ib], r_bound_[ib]));  // the whole trace
   Contact k;
   Pending q;
   q.k.a = -1;
