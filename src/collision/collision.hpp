@@ -74,6 +74,15 @@ using Tier = world::ShapeTier;
 Method parse_method(const std::string& s);  // "thesis" | "continuous"; throws std::invalid_argument
 Tier parse_tier(const std::string& s);      // "auto" | "sphere" | "capsule" | "box" | "hull" | "mesh"
 inline const char* tier_name(Tier t) { return world::shape_tier_name(t); }
+// The continuous method's name for a contact its tier t decided (the event log's `method`).
+inline const char* continuous_method_name(Tier t, bool fixed) {
+  switch (t) {
+    case Tier::Box: return fixed ? "continuous-box-fixed" : "continuous-box";
+    case Tier::Hull: return fixed ? "continuous-hull-fixed" : "continuous-hull";
+    case Tier::Mesh: return fixed ? "continuous-mesh-fixed" : "continuous-mesh";
+    default: return fixed ? "continuous-sphere-fixed" : "continuous-sphere";
+  }
+}
 // The highest tier a kind declares: its `tiers` list in models/kinds.toml when it has one; else
 // fixed objects and munitions are spheres (the thesis's bounding spheres, p. 9 and p. 15) and
 // vehicles go up to their polygon mesh (the thesis's L3 polygons, p. 15).

@@ -1,0 +1,209 @@
+// The continuous method's tests of one moving pair (collision.hpp; continuous.cpp's passes run
+// them): its sweep and contact, a pending pair decided at its tier, and the narrow phase of the
+// shapes' tiers (for fixed objects too).
+#include <algorithm>
+#include <cmath>
+
+#include "collision/collision.hpp"
+#include "core/prefetch.hpp"
+#include "world/pose.hpp"
+
+namespace npsnet::collision {
+namespace {
+
+// A moving body's radius in its pair's sweep: its sphere's at the sphere tier, else its bound's
+// (a tier above may be asked).
+double swept_radius(Tier tier, double r_sphere, double r_bound) { return tier == Tier::Sphere ? r_sphere : r_bound; }
+
+}  // namespace
+
+Motion Detector::motion(const world::World& w, int e) const {
+  const auto& ents = w.ents;
+  Motion m;
+  m.end.rot = world::pose_rotation(ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]);
+  m.end.pos = ents.pos[e];
+  m.move = ents.vel[e] * opt_.dt_s;  // displacement over the tick
+  const Hpr& s = start_hpr_[e];
+  m.rot0 = s == Hpr{ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]} ? m.end.rot
+                                                                                : world::pose_rotation(s[0], s[1], s[2]);
+  return m;
+}
+
+bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier tier, double t_in, double t_out,
+                      Contact& k, Lane& L) {
+  const auto& ents = w.ents;
+  const Shape& sa = shapes_[w.kinds[ents.kind[a]].models[ents.state[a]]];
+  const Motion ma = motion(w, a);
+  Motion mb;
+  const Shape* sbp;
+  if (b_fixed) {
+    sbp = &shapes_[w.kinds[w.fixed.kind[b]].models[w.fixed.state[b]]];
+    mb.end.rot = mb.rot0 = world::pose_rotation(w.fixed.heading_deg[b], 0, 0);
+    mb.end.pos = w.fixed.pos[b];
+  } else {
+    sbp = &shapes_[w.kinds[ents.kind[b]].models[ents.state[b]]];
+    mb = motion(w, b);
+  }
+  const Shape& sb = *sbp;
+  const Vec3 &va = ma.move, &vb = mb.move;
+  auto poses = [&](double t, Pose& pa, Pose& pb) { pa = ma.pose_at(t), pb = mb.pose_at(t); };
+  const double rel = (va - vb).norm();
+  // Neither turns: the straight search (cast_shapes); else the angular bound (cast_turning).
+  const bool turning = ma.rot0 != ma.end.rot || mb.rot0 != mb.end.rot;
+  const Trace toi = turning ? cast_turning(sa, ma, sb, mb, tier, t_in, t_out, L.scratch, L.stats.tier_decided)
+                            : cast_shapes(sa, ma.end, va, sb, mb.end, vb, tier, t_in, t_out, L.scratch,
+                                          L.stats.tier_decided);
+  if (!toi.hit) return false;
+  const double hi = toi.fraction;
+  Pose pa, pb;
+  poses(hi, pa, pb);
+  const Vec3 ca = pa.rot * sa.sphere_centre + pa.pos, cb = pb.rot * sb.sphere_centre + pb.pos;
+  const Vec3 d = cb - ca;
+  k.normal = d.norm() > 1e-9 ? Vec3(d.normalized()) : (rel > 0 ? Vec3((vb - va).normalized()) : Vec3::UnitX());
+  Vec3 p;
+  // On the meeting triangles' intersection: at hi, or a few millimetres of travel later when
+  // the surfaces only touch there.
+  bool met = false;
+  // (travel: the fastest a point of either body moves, the turn's included)
+  const double travel = turning ? rel + sa.pivot_radius * ma.angle() + sb.pivot_radius * mb.angle() : rel;
+  for (int i = 0; i < 8 && !met; ++i) {
+    const double t = std::min(1.0, hi + i * 0.002 / std::max(travel, 1e-9));
+    Pose qa, qb;
+    poses(t, qa, qb);
+    met = mesh_overlap(sa, qa, sb, qb, L.scratch, &p);
+  }
+  if (met) {
+    k.point = p;
+  } else {
+    // Box or hull contact without the surfaces meeting: the ray from each centre to the other
+    // (thesis L3's first ray, Haines on the polygon), midway between the two surface points.
+    const Trace hb = ray_model(w.models[w.kinds[b_fixed ? w.fixed.kind[b] : ents.kind[b]]
+                                             .models[b_fixed ? w.fixed.state[b] : ents.state[b]]],
+                                pb.rot.transpose() * (ca - pb.pos), pb.rot.transpose() * k.normal, 0, d.norm());
+    const Trace ha = ray_model(w.models[w.kinds[ents.kind[a]].models[ents.state[a]]],
+                                pa.rot.transpose() * (cb - pa.pos), -(pa.rot.transpose() * k.normal), 0, d.norm());
+    const Vec3 qa = ha.hit ? Vec3(pa.rot * ha.point + pa.pos) : ca;
+    const Vec3 qb = hb.hit ? Vec3(pb.rot * hb.point + pb.pos) : cb;
+    k.point = 0.5 * (qa + qb);
+  }
+  k.hit = true;
+  k.fraction = hi;
+  k.started_inside = toi.started_inside;
+  k.method = continuous_method_name(tier, b_fixed);
+  k.tier = tier_name(tier);
+  return true;
+}
+
+Trace Detector::pair_sweep(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa, double rba,
+                           const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, Tier& tier, Lane& L,
+                           bool hit_only) const {
+  const auto& ents = w.ents;
+  tier = w.is_munition(a) || w.is_munition(b) ? Tier::Sphere
+         : opt_.tier != Tier::Auto            ? opt_.tier
+                                               : std::min(top_tier(w.kinds[ents.kind[a]]), top_tier(w.kinds[ents.kind[b]]));
+  ++L.stats.sweep_pairs;
+  const Trace h = sphere_sweep(c0a, c1a, swept_radius(tier, rsa, rba), c0b, c1b, swept_radius(tier, rsb, rbb), hit_only);
+  if (!h.hit) ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
+  else ++L.stats.sweep_hits;
+  return h;
+}
+
+bool Detector::pair_hit(const world::World& w, int a, int b, const Trace& h, Tier tier, Contact& k, Lane& L,
+                        Pending* defer) {
+  const auto& ents = w.ents;
+  k.a = a, k.b = b, k.b_fixed = false, k.dt_s = opt_.dt_s;
+  if (tier == Tier::Sphere) {
+    ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
+    static_cast<Trace&>(k) = h;
+    k.method = w.is_munition(a) || w.is_munition(b) ? "continuous-munition" : continuous_method_name(Tier::Sphere, false);
+    k.tier = tier_name(Tier::Sphere);
+    return true;
+  }
+  if (defer) {  // auto tier: allocate_tiers gives it its tier first
+    defer->k = k, defer->exact = tier, defer->t_in = h.fraction, defer->t_out = h.exit_fraction;
+    defer->closing = (ents.vel[a] - ents.vel[b]).norm();
+    return false;
+  }
+  return narrow(w, a, b, false, tier, h.fraction, h.exit_fraction, k, L);
+}
+
+void Detector::prefetch_pair(const world::World& w, size_t p, int stage) const {
+  const auto [i, j] = pairs_[p];
+  if (stage == 0) {
+    core::prefetch(&order_[i]), core::prefetch(&order_[j]);
+    return;
+  }
+  const uint32_t lo = std::min(order_[i], order_[j]);
+  if (stage == 2) {
+    if (!lo_start_.empty() && lo_start_[lo] < previous_.size()) core::prefetch(&previous_[lo_start_[lo]]);
+    return;
+  }
+  for (const uint32_t s : {i, j}) {
+    core::prefetch_object(&c0_[s]), core::prefetch_object(&c1_[s]);  // a Vec3 may span two lines
+    core::prefetch(&r_sphere_[s]), core::prefetch(&r_bound_[s]);
+    const uint32_t e = order_[s];
+    core::prefetch(&w.ents.owner[e]), core::prefetch(&w.ents.kind[e]), core::prefetch(&rank_.ranks()[e]);
+    core::prefetch_object(&w.ents.vel[e]);  // a pair left to allocate_tiers: its closing speed
+  }
+  if (!lo_start_.empty()) core::prefetch(&lo_start_[lo]);
+}
+
+void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
+  const auto& ents = w.ents;
+  const auto [i, j] = pairs_[p];
+  int a = static_cast<int>(order_[i]), b = static_cast<int>(order_[j]);
+  size_t ia = i, ib = j;
+  if (ents.owner[a] == b || ents.owner[b] == a) return;  // a round never meets its shooter
+  if (w.is_munition(a) && w.is_munition(b)) return;
+  // Canonical order by id rank, so that the answer does not depend on where entities are stored.
+  if (rank_.ranks()[b] < rank_.ranks()[a]) std::swap(a, b), std::swap(ia, ib);
+  Tier tier;
+  if (!pair_sweep(w, a, b, c0_[ia], c1_[ia], r_sphere_[ia], r_bound_[ia], c0_[ib], c1_[ib], r_sphere_[ib], r_bound_[ib],
+                  tier, L, true)
+           .hit)
+    return;
+  // A running episode goes on while the bounds meet (its key) but reports nothing: detect() would
+  // drop its contact, so none is made (in a crowd of overlapping vehicles, most of the pairs).
+  if (was_touching(a, b)) {
+    ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];  // decided by its bounds: the sphere tier
+    L.touching.push_back(contact_key(a, b, false));
+    return;
+  }
+  const Trace h = sphere_sweep(c0_[ia], c1_[ia], swept_radius(tier, r_sphere_[ia], r_bound_[ia]), c0_[ib], c1_[ib],
+                               swept_radius(tier, r_sphere_[ib], r_bound_[ib]));  // the whole trace
+  Contact k;
+  Pending q;
+  q.k.a = -1;
+  if (!pair_hit(w, a, b, h, tier, k, L, opt_.tier == Tier::Auto ? &q : nullptr)) {
+    if (q.k.a >= 0) {  // deferred to allocate_tiers
+      q.ia = static_cast<uint32_t>(ia), q.ib = static_cast<uint32_t>(ib);
+      L.pending.push_back(q);
+    }
+    return;
+  }
+  L.touching.push_back(contact_key(a, b, false));
+  L.candidates.push_back(k);
+}
+
+void Detector::decide_pending(const world::World& w, size_t p, Lane& L) {
+  const Pending& q = pending_[p];
+  Contact k = q.k;
+  if (q.tier == Tier::Sphere) {  // the thesis spheres swept: what the sphere tier finds
+    const int b = k.b;
+    const Vec3 cb0 = k.b_fixed ? world::fixed_centre(w, b) : c0_[q.ib];
+    const Vec3 cb1 = k.b_fixed ? cb0 : c1_[q.ib];
+    const double rb = k.b_fixed ? world::fixed_radius(w, b) : r_sphere_[q.ib];
+    const Trace h = sphere_sweep(c0_[q.ia], c1_[q.ia], r_sphere_[q.ia], cb0, cb1, rb);
+    ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
+    if (!h.hit) return;
+    static_cast<Trace&>(k) = h;
+    k.method = continuous_method_name(Tier::Sphere, k.b_fixed);
+    k.tier = tier_name(Tier::Sphere);
+  } else if (!narrow(w, k.a, k.b, k.b_fixed, q.tier, q.t_in, q.t_out, k, L)) {
+    return;
+  }
+  L.touching.push_back(contact_key(k.a, k.b, k.b_fixed));
+  L.candidates.push_back(k);
+}
+
+}  // namespace npsnet::collision
