@@ -224,7 +224,7 @@ class Detector {
   void decide_pending(const world::World& w, size_t p, Lane& L);
   // A moving pair, first its sweep: the tier it needs (tier; the sphere for a munition) and the
   // sweep of its spheres, or of its bounds when a tier above the sphere may be asked (counted).
-  // hit_only: sphere_sweep's hit_only (the rest of the trace is asked again after, if needed).
+  // hit_only: sphere_sweep's hit_only (a running episode needs only whether its bounds meet).
   Trace pair_sweep(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa, double rba,
                    const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, Tier& tier, Lane& L,
                    bool hit_only = false) const;

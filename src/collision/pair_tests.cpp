@@ -157,20 +157,19 @@ void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
   if (w.is_munition(a) && w.is_munition(b)) return;
   // Canonical order by id rank, so that the answer does not depend on where entities are stored.
   if (rank_.ranks()[b] < rank_.ranks()[a]) std::swap(a, b), std::swap(ia, ib);
-  Tier tier;
-  if (!pair_sweep(w, a, b, c0_[ia], c1_[ia], r_sphere_[ia], r_bound_[ia], c0_[ib], c1_[ib], r_sphere_[ib], r_bound_[ib],
-                  tier, L, true)
-           .hit)
-    return;
   // A running episode goes on while the bounds meet (its key) but reports nothing: detect() would
-  // drop its contact, so none is made (in a crowd of overlapping vehicles, most of the pairs).
-  if (was_touching(a, b)) {
+  // drop its contact, so none is made and its sweep asks only whether they meet (in a crowd of
+  // overlapping vehicles, most of the pairs).
+  const bool continuing = was_touching(a, b);
+  Tier tier;
+  const Trace h = pair_sweep(w, a, b, c0_[ia], c1_[ia], r_sphere_[ia], r_bound_[ia], c0_[ib], c1_[ib], r_sphere_[ib],
+                             r_bound_[ib], tier, L, continuing);
+  if (!h.hit) return;
+  if (continuing) {
     ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];  // decided by its bounds: the sphere tier
     L.touching.push_back(contact_key(a, b, false));
     return;
   }
-  const Trace h = sphere_sweep(c0_[ia], c1_[ia], swept_radius(tier, r_sphere_[ia], r_bound_[ia]), c0_[ib], c1_[ib],
-                               swept_radius(tier, r_sphere_[ib], r_bound_[ib]));  // the whole trace
   Contact k;
   Pending q;
   q.k.a = -1;
