@@ -252,13 +252,17 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
     for (int c = 0; c < k; ++c) out.insert(out.end(), chunk_pairs_[c].begin(), chunk_pairs_[c].end());
   };
   // 4. Kept pairs: those of two bodies that stayed (per range, concatenated in range order: the
-  //    serial order); then the moved bodies' pairs, from the grid.
+  //    serial order); then the moved bodies' pairs, from the grid. When no body moved or went (a
+  //    crowd rocking within its fat boxes, a parked convoy), every kept pair stays as it is.
   auto stayed = [&](const std::pair<uint32_t, uint32_t>& p) { return gone_moved_[p.first] != tick_ && gone_moved_[p.second] != tick_; };
   auto prefetch_stayed = [&](const std::pair<uint32_t, uint32_t>& p) {
     core::prefetch(&gone_moved_[p.first]), core::prefetch(&gone_moved_[p.second]);
   };
+  const bool all_stayed = moved_.empty() && ids_n == 0;  // (ids_n == 0: none went, step 2)
   const int kk = jobs ? jobs->chunks(kept_.size(), kKeptGrain, 4) : 1;
-  if (kk <= 1) {
+  if (all_stayed) {
+    // nothing to drop
+  } else if (kk <= 1) {
     size_t to = 0;
     for (size_t p = 0; p < kept_.size(); ++p) {
       if (p + kKeptAhead < kept_.size()) prefetch_stayed(kept_[p + kKeptAhead]);

@@ -12,7 +12,8 @@
 //    listed in the cells of a hashed grid. A body whose box leaves its fat box (or that is new,
 //    or gone) "moves": its fat box is made again and its pairs found again, from the grid; the
 //    others keep theirs. The kept pairs are those whose fat boxes overlap; a tick reports the ones
-//    whose boxes overlap. A moved body that stays in the same cells touches no bucket. At 100,000
+//    whose boxes overlap (when no body moved or went, the kept pairs are not walked to drop
+//    any). A moved body that stays in the same cells touches no bucket. At 100,000
 //    vehicles driving (bench_tick_scaling), about a fifth move a tick, a tenth of those to other
 //    cells: 13 M instructions a tick where MovingGrid takes 30 M.
 //  * Bodies whose fat box would span more than kMaxCellsPerAxis cells a side (a round in flight),
