@@ -7,9 +7,11 @@
 // same exercise without faults is the reference for what does not depend on timing: the craters
 // and the changed objects must be the control's. Skips where namespaces are not available (77).
 // Each run is bounded (nodes end 48 s after launch; the script kills them 30 s later); the test
-// gives each 150 s, then SIGTERM (its trap deletes the namespaces by name) and 10 s to clean up.
+// runs both at once and gives them 150 s from their start, then SIGTERM (the script's trap
+// deletes its namespaces by name) and 10 s each to clean up.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 #include "lan_support.hpp"
@@ -28,8 +30,9 @@ int start_script(lan::Procs& procs, const std::filesystem::path& dir, const std:
   a.insert(a.end(), args.begin(), args.end());
   return procs.start_program("/bin/bash", a, dir / "script.txt");
 }
-int wait_script(lan::Procs& procs, int pid, const std::filesystem::path& dir, std::string& out) {
-  const int rc = procs.wait(pid, 150.0, 10.0);
+// Waits for it until UNIX time `deadline` (then SIGTERM, and 10 s for its trap to clean up).
+int wait_script(lan::Procs& procs, int pid, double deadline, const std::filesystem::path& dir, std::string& out) {
+  const int rc = procs.wait(pid, std::max(1.0, deadline - lan::unix_now()), 10.0);
   out = lan::read_text(dir / "script.txt");
   return rc;
 }
@@ -42,11 +45,12 @@ TEST(Faults, FourNodesAgreeAfterLossPartitionKillAndLateJoin) {
   // The two runs at once, each in namespaces and on a port of its own (the script names them by
   // its pid): run one after the other they took 23 s of CPU in 103 s, so together they leave the
   // nodes most of the machine, and the test takes one run's 50 s instead of two.
+  const double deadline = lan::unix_now() + 150.0;
   const int control_pid = start_script(procs, control, {"--control"});
   const int faulty_pid = start_script(procs, faulty, {});
   std::string out, faulty_out;
-  int rc = wait_script(procs, control_pid, control, out);
-  const int faulty_rc = wait_script(procs, faulty_pid, faulty, faulty_out);
+  int rc = wait_script(procs, control_pid, deadline, control, out);
+  const int faulty_rc = wait_script(procs, faulty_pid, deadline, faulty, faulty_out);
   if (rc == 77) GTEST_SKIP() << out;
   ASSERT_EQ(rc, 0) << out;
   // The script compares every node's collisions across nodes (pairs, outcome_a, outcome_b) with
