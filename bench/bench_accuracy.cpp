@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "support/dirs.hpp"
 #include "collision/collision.hpp"
 #include "fcl_oracle.hpp"
 #include "support/fcl_mesh.hpp"
@@ -189,7 +190,7 @@ int main(int argc, char** argv) {
               count, static_cast<unsigned long long>(seed), truth_hits, started_inside, grazes, not_converged,
               fcl_queries, wall);
   // The committed CSV is the full run's; a shorter run only prints.
-  std::ofstream csv(count >= 100000 ? std::string(NPSNET_SOURCE_DIR) + "/bench/results/accuracy.csv" : "/dev/null");
+  std::ofstream csv(count >= 100000 ? std::string(npsnet::dirs::source()) + "/bench/results/accuracy.csv" : "/dev/null");
   csv << "method,encounters,truth_hits,method_hits,misses,miss_rate,false_positives,false_positive_rate,"
          "point_err_median_m,point_err_p95_m,point_err_mean_m,time_err_median_m,time_per_pair_us\n";
   std::printf("| method | miss rate | false-positive rate | contact-point error median / p95 (m) | time error median (m of travel) | time per pair (us) |\n");

@@ -39,6 +39,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "support/dirs.hpp"
 #include "bench_args.hpp"
 #include "net/net.hpp"
 
@@ -246,7 +247,7 @@ std::string row(const Result& r) {
 int main(int argc, char** argv) {
   const auto [quick, csv] = npsnet::bench::bench_args(argc, argv, "bench_aoi: the area of interest's traffic and entry latency",
                                                       "1,000 and 5,000 entities only, no CSV",
-                                                      std::string(NPSNET_SOURCE_DIR) + "/bench/results/aoi.csv");
+                                                      std::string(npsnet::dirs::source()) + "/bench/results/aoi.csv");
   const std::vector<int> sizes = quick ? std::vector<int>{1000, 5000} : std::vector<int>{1000, 2000, 5000, 10000, 20000};
   const std::uint16_t port = static_cast<std::uint16_t>(20000 + ::getpid() % 40000);
   std::vector<Result> out;

@@ -19,6 +19,7 @@
 #include <map>
 #include <random>
 
+#include "support/dirs.hpp"
 #include "collision/collision.hpp"
 #include "crowd_scene.hpp"
 #include "world/pose.hpp"
@@ -49,7 +50,7 @@ struct Scene {
 
 world::World& base_world() {
   static world::World w = [] {
-    auto sc = world::load_scenario(std::string(NPSNET_SOURCE_DIR) + "/scenarios/default.toml");
+    auto sc = world::load_scenario(std::string(npsnet::dirs::source()) + "/scenarios/default.toml");
     return world::build_world(sc);
   }();
   return w;
@@ -391,7 +392,7 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks(&rep);
   // Ratio table and CSV.
 #ifdef NPSNET_BENCH_PEERS  // the committed CSV holds all three side by side at every N, or nothing
-  std::ofstream csv(quick ? "/dev/null" : std::string(NPSNET_SOURCE_DIR) + "/bench/results/broadphase.csv");
+  std::ofstream csv(quick ? "/dev/null" : std::string(npsnet::dirs::source()) + "/bench/results/broadphase.csv");
 #else
   std::ofstream csv("/dev/null");
 #endif

@@ -35,6 +35,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "support/dirs.hpp"
 #include "support/fixture.hpp"
 
 #ifndef NPSNET_BENCH_PEERS
@@ -191,7 +192,7 @@ int accuracy(int n, double side, bool fixed, std::string csv) {
     truth_hits += tr.verdict && tr.hit;
     started_inside += tr.verdict && tr.hit && tr.started_inside;
   }
-  if (csv.empty()) csv = std::string(NPSNET_SOURCE_DIR) + "/bench/results/budget_error" + (fixed ? "_fixed" : "") + ".csv";
+  if (csv.empty()) csv = std::string(npsnet::dirs::source()) + "/bench/results/budget_error" + (fixed ? "_fixed" : "") + ".csv";
   std::ofstream f(csv);
   f << "budget_ms,pairs,lowered,contacts,truth,false_pos,misses,point_err_median_m,point_err_p95_m,detect_ms\n";
   std::printf("%d vehicles%s in %.0f m x %.0f m: %zu %s pairs need a narrow phase, FCL: %d touch (%d from the tick's "
@@ -210,7 +211,7 @@ int accuracy(int n, double side, bool fixed, std::string csv) {
   }
   if (!fixed) return 0;
   // The error table per tier, vehicle-vs-fixed.
-  const std::string tcsv = std::string(NPSNET_SOURCE_DIR) + "/bench/results/accuracy_fixed.csv";
+  const std::string tcsv = std::string(npsnet::dirs::source()) + "/bench/results/accuracy_fixed.csv";
   std::ofstream t(csv.find("budget_error_fixed.csv") != std::string::npos ? tcsv : csv + ".tiers.csv");
   t << "method,pairs,truth,contacts,false_pos,misses,point_err_median_m,point_err_p95_m,detect_ms\n";
   std::printf("\n| method | misses | false positives | contact-point error median / p95 (m) | detect ms |\n|---|---|---|---|---|\n");
@@ -231,7 +232,7 @@ int accuracy(int n, double side, bool fixed, std::string csv) {
 
 // The full continuous step in the crowd, with the default budget and without one.
 int crowd(int n, int threads, int ticks, bool spatial, std::string csv) {
-  auto sc = world::load_scenario(std::string(NPSNET_SOURCE_DIR) + "/scenarios/default.toml");
+  auto sc = world::load_scenario(std::string(npsnet::dirs::source()) + "/scenarios/default.toml");
   world::World w = world::build_world(sc);
   w.ents = world::Entities{};
   bench::add_crowd(w, n, spatial);
@@ -239,7 +240,7 @@ int crowd(int n, int threads, int ticks, bool spatial, std::string csv) {
   const double dt = kTickS;
   std::vector<Vec3> step;
   for (size_t e = 0; e < w.ents.size(); ++e) step.push_back(w.ents.vel[e] * dt);
-  if (csv.empty()) csv = std::string(NPSNET_SOURCE_DIR) + "/bench/results/crowd_budget.csv";
+  if (csv.empty()) csv = std::string(npsnet::dirs::source()) + "/bench/results/crowd_budget.csv";
   std::ofstream f(csv);
   f << "vehicles,threads,budget_ms,tick,ms,contacts,narrow_pairs,lowered,decided_sphere,decided_box,decided_hull,decided_mesh\n";
   std::printf("| budget (ms) | tick | ms | contacts | pairs given a tier | lowered | decided by sphere / box / hull / mesh |\n"

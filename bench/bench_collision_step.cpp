@@ -11,6 +11,7 @@
 
 #include <chrono>
 
+#include "support/dirs.hpp"
 #include "node/simulation.hpp"
 
 using namespace npsnet;
@@ -23,7 +24,7 @@ struct Scene {
 Scene& scene() {
   static Scene s = [] {
     Scene x;
-    x.sc = world::load_scenario(std::string(NPSNET_SOURCE_DIR) + "/scenarios/default.toml");
+    x.sc = world::load_scenario(std::string(npsnet::dirs::source()) + "/scenarios/default.toml");
     x.w = world::build_world(x.sc);
     return x;
   }();

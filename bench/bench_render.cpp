@@ -17,6 +17,7 @@
 #include <map>
 #include <memory>
 
+#include "support/dirs.hpp"
 #include "input/action.hpp"
 #include "node/cameras.hpp"
 #include "render/renderer.hpp"
@@ -36,7 +37,7 @@ struct Scene {
 Scene& scene() {
   static Scene s = [] {
     Scene x;
-    x.sc = world::load_scenario(std::string(NPSNET_SOURCE_DIR) + "/scenarios/default.toml");
+    x.sc = world::load_scenario(std::string(npsnet::dirs::source()) + "/scenarios/default.toml");
     x.w = world::build_world(x.sc);
     std::map<std::pair<int, int>, int> cells;
     for (const auto& p : x.w.fixed.pos) ++cells[{static_cast<int>(p.x() / 2000), static_cast<int>(p.y() / 2000)}];
@@ -59,7 +60,7 @@ render::Renderer& renderer(int w, int h) {
     render::RenderOptions o;
     o.width = w;
     o.height = h;
-    o.shader_dir = std::string(NPSNET_SOURCE_DIR) + "/shaders";
+    o.shader_dir = std::string(npsnet::dirs::source()) + "/shaders";
     r = std::make_unique<render::Renderer>(o, scene().w);
   }
   return *r;

@@ -55,6 +55,7 @@
 #include <thread>
 #include <vector>
 
+#include "support/dirs.hpp"
 #include "core/jobs.hpp"
 #include "node/net_bridge.hpp"
 #include "node/simulation.hpp"
@@ -294,7 +295,7 @@ struct MachineProbe {
 
 int main(int argc, char** argv) {
   std::vector<int> ns = {500, 1000, 2000, 5000, 10000, 20000, 50000, 100000, 200000};
-  std::string csv = std::string(NPSNET_SOURCE_DIR) + "/bench/results/tick_scaling.csv";
+  std::string csv = std::string(npsnet::dirs::source()) + "/bench/results/tick_scaling.csv";
   int one_net = -1, one_threads = 1, ticks_override = 0;
   bool some_n = false, csv_given = false, prewake = true, stages = false;
   int pin = -1;  // --pin C: the tick's thread on CPU C (the pools' workers keep every CPU)
@@ -333,7 +334,7 @@ int main(int argc, char** argv) {
       std::exit(2);
     }
   };
-  const world::Scenario base = world::load_scenario(std::string(NPSNET_SOURCE_DIR) + "/scenarios/default.toml");
+  const world::Scenario base = world::load_scenario(std::string(npsnet::dirs::source()) + "/scenarios/default.toml");
   std::ofstream out;
   if (!csv.empty()) {
     out.open(csv);

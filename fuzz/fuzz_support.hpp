@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <string_view>
 
+#include "npsnet_dirs.hpp"
+
 namespace npsnet::fuzz {
 
 // fuzz/data: a small world (33 x 33 terrain posts, ~220 objects, the bundled kinds with one box

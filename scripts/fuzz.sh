@@ -31,7 +31,8 @@ if ! command -v clang++ >/dev/null 2>&1; then
   echo "fuzz: clang++ not found (bash scripts/install-deps.sh installs clang)" >&2
   exit 2
 fi
-CC=clang CXX=clang++ cmake -S . -B "$B" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNPSNET_FUZZ=ON \
+source scripts/ccache.sh
+CC=clang CXX=clang++ cmake -S . -B "$B" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${ccache_args[@]}" -DNPSNET_FUZZ=ON \
   -DNPSNET_TESTS=OFF -DNPSNET_BENCH=OFF -DNPSNET_RENDER=OFF >/dev/null
 cmake --build "$B" -j2 --target "${targets[@]/#/fuzz_}"
 

@@ -3,7 +3,7 @@
 set -euo pipefail
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-PKGS=(build-essential cmake pkg-config git
+PKGS=(build-essential cmake pkg-config git ccache
   libeigen3-dev libasio-dev libstb-dev libgdal-dev libtinyobjloader-dev libtomlplusplus-dev
   nlohmann-json3-dev libcli11-dev libspdlog-dev
   libosmesa6-dev libgl-dev libglfw3-dev xvfb xauth libspnav-dev xdotool x11-utils imagemagick libx11-dev

@@ -10,9 +10,18 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 t0=$SECONDS
 stage() { echo "== test.sh: $1 ($(( (SECONDS - t0) / 60 )) min so far)"; }
+# What the last build took from ccache (scripts/ccache.sh), when it is used.
+cached() {
+  if [ "${NPSNET_NO_CCACHE:-0}" != "1" ] && command -v ccache >/dev/null 2>&1; then
+    echo "== test.sh: ccache, $1: $(ccache -s | sed -n 's/^ *\(Hits\|Misses\): *\([0-9]*\) *\/ *\([0-9]*\).*/\1 \2/p' | paste -sd' ') of $(ccache -s | sed -n 's/^Cacheable calls: *[0-9]* *\/ *\([0-9]*\).*/\1/p') compiles"
+    ccache -z >/dev/null
+  fi
+}
 bash scripts/install-deps.sh
+if command -v ccache >/dev/null 2>&1; then ccache -z >/dev/null; fi
 stage "build"
 bash scripts/build.sh build
+cached build
 stage "ctest"
 # Under a virtual display when xvfb-run exists, so the GLFW window test runs too.
 XVFB=""
@@ -22,11 +31,13 @@ if [ "${NPSNET_NO_SANITIZE:-0}" != "1" ]; then
   stage "ASan + UBSan build and ctest, rooms: ${NPSNET_SANITIZE_ROOMS:-engine}"
   bash scripts/build.sh build-asan -DNPSNET_SANITIZE=ON -DNPSNET_BENCH=OFF \
     -DNPSNET_ROOMS="${NPSNET_SANITIZE_ROOMS:-engine}"
+  cached build-asan
   (cd build-asan && ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 \
      ctest --output-on-failure -j2 --timeout 900)
 fi
 if [ "${NPSNET_NO_FUZZ:-0}" != "1" ]; then
   stage "fuzz"
   NPSNET_FUZZ_RUNS="${NPSNET_FUZZ_RUNS:-3000}" bash scripts/fuzz.sh "${NPSNET_FUZZ_SECONDS:-15}"
+  cached build-fuzz
 fi
 stage "done"

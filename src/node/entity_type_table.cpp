@@ -1,3 +1,4 @@
+#include "npsnet_dirs.hpp"
 #include "node/entity_type_table.hpp"
 
 #include <algorithm>

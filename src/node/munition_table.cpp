@@ -1,3 +1,4 @@
+#include "npsnet_dirs.hpp"
 #include "node/munition_table.hpp"
 
 #include <algorithm>

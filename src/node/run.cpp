@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <thread>
 
+#include "npsnet_dirs.hpp"
 #include "core/jobs.hpp"
 #include "input/action_file.hpp"
 #include "node/options.hpp"

@@ -1,4 +1,5 @@
 #ifdef NPSNET_HAVE_RENDER
+#include "npsnet_dirs.hpp"
 #include "node/snapshots.hpp"
 
 #include <algorithm>

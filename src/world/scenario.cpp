@@ -1,3 +1,4 @@
+#include "npsnet_dirs.hpp"
 #include "world/scenario.hpp"
 
 #include <algorithm>
@@ -13,7 +14,7 @@
 
 namespace npsnet::world {
 
-std::filesystem::path default_kinds_file() { return std::filesystem::path(NPSNET_DATA_DIR) / "models" / "kinds.toml"; }
+std::filesystem::path default_kinds_file() { return std::filesystem::path(NPSNET_SOURCE_DIR) / "models" / "kinds.toml"; }
 
 namespace {
 

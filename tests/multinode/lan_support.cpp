@@ -1,3 +1,4 @@
+#include "support/dirs.hpp"
 #include "lan_support.hpp"
 
 #include "support/scratch.hpp"
@@ -30,7 +31,7 @@ double unix_now() {
 std::filesystem::path npsnet_binary() {
   // NPSNET_TEST_BINARY: run the tests against another build (e.g. an older one, to see a test fail).
   if (const char* b = std::getenv("NPSNET_TEST_BINARY"); b && *b) return b;
-  return std::filesystem::path(NPSNET_BINARY_DIR) / "npsnet";
+  return std::filesystem::path(npsnet::dirs::binary()) / "npsnet";
 }
 
 std::filesystem::path fresh_dir(const std::string& tag) { return npsnet::test::fresh_dir(tag); }
@@ -176,7 +177,7 @@ std::vector<std::string> node_args(const std::string& scenario, int port, int no
                                    const std::filesystem::path& dir, const std::string& tag) {
   char s[64];
   std::snprintf(s, sizeof s, "%.3f", start_at);
-  return {"run",      "--scenario", (std::filesystem::path(NPSNET_SOURCE_DIR) / "tests" / "multinode" / "data" / scenario).string(),
+  return {"run",      "--scenario", (std::filesystem::path(npsnet::dirs::source()) / "tests" / "multinode" / "data" / scenario).string(),
           "--net",    "udp://239.1.2.3:" + std::to_string(port),
           "--iface",  "127.0.0.1",
           "--node",   std::to_string(node),

@@ -15,13 +15,14 @@
 #include <thread>
 #include <vector>
 
+#include "support/dirs.hpp"
 #include "lan_support.hpp"
 #include "net/net.hpp"
 #include "world/scenario.hpp"
 
 namespace fed {
 
-inline const std::filesystem::path kData = std::filesystem::path(NPSNET_SOURCE_DIR) / "tests" / "multinode" / "data";
+inline const std::filesystem::path kData = std::filesystem::path(npsnet::dirs::source()) / "tests" / "multinode" / "data";
 
 struct Node {
   std::filesystem::path dir, events, out;

@@ -11,12 +11,13 @@
 #include <regex>
 #include <thread>
 
+#include "support/dirs.hpp"
 #include "lan_support.hpp"
 
 namespace {
 using nlohmann::json;
 using lan::of_type;
-const std::filesystem::path kData = std::filesystem::path(NPSNET_SOURCE_DIR) / "tests" / "multinode" / "data";
+const std::filesystem::path kData = std::filesystem::path(npsnet::dirs::source()) / "tests" / "multinode" / "data";
 constexpr double kHeartbeatS = 5.0;  // Annex C (the nodes run with the default DIS timeout, 12 s)
 
 std::vector<std::string> args(int port, int node, double start_at, const std::filesystem::path& dir) {

@@ -11,12 +11,13 @@
 #include <regex>
 #include <set>
 
+#include "support/dirs.hpp"
 #include "lan_support.hpp"
 
 namespace {
 
 using nlohmann::json;
-const std::filesystem::path kData = std::filesystem::path(NPSNET_SOURCE_DIR) / "tests" / "multinode" / "data";
+const std::filesystem::path kData = std::filesystem::path(npsnet::dirs::source()) / "tests" / "multinode" / "data";
 
 struct Node {
   std::filesystem::path events, out;

@@ -13,6 +13,7 @@
 #include <string>
 #include <thread>
 
+#include "support/dirs.hpp"
 #include "lan_support.hpp"
 #include "net/transport.hpp"
 #include "node/net_bridge.hpp"
@@ -71,7 +72,7 @@ void wait_for_receive_timestamps(int port) {
 // The schedule above; returns node 2's copy of the tank against what node 1 sent.
 Seen run_pair(bool paced, const std::string& tag) {
   const world::Scenario sc =
-      world::load_scenario(std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/dr_arrival.toml");
+      world::load_scenario(std::string(npsnet::dirs::source()) + "/tests/multinode/data/dr_arrival.toml");
   const int port = lan::random_port();
   Node a = make_node(sc, 1, port, paced, tag), b = make_node(sc, 2, port, paced, tag);
   wait_for_receive_timestamps(port + 1);

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <fstream>
 
+#include "support/dirs.hpp"
 #include "lan_support.hpp"
 
 namespace {
@@ -26,7 +27,7 @@ json state(const std::filesystem::path& dir, int k) {
 
 // Starts scripts/faults.sh with `args`, its output to dir/script.txt; returns its pid.
 int start_script(lan::Procs& procs, const std::filesystem::path& dir, const std::vector<std::string>& args) {
-  std::vector<std::string> a{std::string(NPSNET_SOURCE_DIR) + "/scripts/faults.sh", "--out", dir.string()};
+  std::vector<std::string> a{std::string(npsnet::dirs::source()) + "/scripts/faults.sh", "--out", dir.string()};
   a.insert(a.end(), args.begin(), args.end());
   return procs.start_program("/bin/bash", a, dir / "script.txt");
 }

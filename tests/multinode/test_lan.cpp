@@ -12,12 +12,13 @@
 #include <set>
 #include <thread>
 
+#include "support/dirs.hpp"
 #include "lan_support.hpp"
 
 namespace {
 
 using nlohmann::json;
-const std::filesystem::path kData = std::filesystem::path(NPSNET_SOURCE_DIR) / "tests" / "multinode" / "data";
+const std::filesystem::path kData = std::filesystem::path(npsnet::dirs::source()) / "tests" / "multinode" / "data";
 
 using lan::node_args;
 using lan::of_type;

@@ -11,6 +11,7 @@
 
 #include <set>
 
+#include "support/dirs.hpp"
 #include "lan_support.hpp"
 
 namespace {
@@ -22,7 +23,7 @@ using lan::of_type;
 TEST(MultiSite, CrossSiteCollisionAndCraterReachEverySite) {
   const auto dir = lan::fresh_dir("multisite");
   lan::Procs procs;
-  const std::string script = std::string(NPSNET_SOURCE_DIR) + "/scripts/multisite.sh";
+  const std::string script = std::string(npsnet::dirs::source()) + "/scripts/multisite.sh";
   const int pid = procs.start_program("/bin/bash", {script, "--short", "--out", dir.string()}, dir / "script.txt");
   const int rc = procs.wait(pid, 110.0, 10.0);
   const std::string out = lan::read_text(dir / "script.txt");

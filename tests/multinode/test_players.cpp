@@ -6,11 +6,12 @@
 
 #include <set>
 
+#include "support/dirs.hpp"
 #include "lan_support.hpp"
 
 namespace {
 using nlohmann::json;
-const std::filesystem::path kData = std::filesystem::path(NPSNET_SOURCE_DIR) / "tests" / "multinode" / "data";
+const std::filesystem::path kData = std::filesystem::path(npsnet::dirs::source()) / "tests" / "multinode" / "data";
 }  // namespace
 
 TEST(LanPlayers, TwoDrivenTanksCollideAndBothLogsAgree) {

@@ -18,6 +18,7 @@
 #include <set>
 #include <thread>
 
+#include "support/dirs.hpp"
 #include "lan_support.hpp"
 #include "../net/tests/run_command.hpp"  // nettest::run_command: a shell command's exit code and stdout
 
@@ -26,7 +27,7 @@ namespace {
 using lan::of_type;
 using nlohmann::json;
 namespace fs = std::filesystem;
-const fs::path kData = fs::path(NPSNET_SOURCE_DIR) / "tests" / "multinode" / "data";
+const fs::path kData = fs::path(npsnet::dirs::source()) / "tests" / "multinode" / "data";
 
 nettest::CommandResult sh(const std::string& cmd) { return nettest::run_command(cmd); }
 std::string npsnet() { return lan::npsnet_binary().string(); }

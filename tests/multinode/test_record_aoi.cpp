@@ -13,6 +13,7 @@
 #include <sstream>
 #include <thread>
 
+#include "support/dirs.hpp"
 #include "lan_support.hpp"
 #include "net/aoi.hpp"
 #include "../net/tests/run_command.hpp"  // nettest::run_command: a shell command's exit code and stdout
@@ -20,7 +21,7 @@
 namespace {
 
 namespace fs = std::filesystem;
-const fs::path kData = fs::path(NPSNET_SOURCE_DIR) / "tests" / "multinode" / "data";
+const fs::path kData = fs::path(npsnet::dirs::source()) / "tests" / "multinode" / "data";
 
 // PDUs a node sent, from its counters line ("| sent entity_state=N fire=M ... datagrams=D").
 long sent_pdus(const std::string& out) {

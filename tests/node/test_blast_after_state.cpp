@@ -9,12 +9,13 @@
 // on main since 4a1286e; the default order (Detonation first) and the reverse (state first).
 #include <gtest/gtest.h>
 
+#include "support/dirs.hpp"
 #include "wire_support.hpp"
 
 using namespace npsnet;
 
 TEST(BlastAfterState, ATreeStateReceivedBeforeOrAfterTheBlastIsNotDamagedTwice) {
-  const std::string file = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/cultural.toml";
+  const std::string file = std::string(npsnet::dirs::source()) + "/tests/multinode/data/cultural.toml";
   for (const bool state_first : {false, true}) {
     SCOPED_TRACE(state_first ? "cultural state first" : "detonation first");
     std::vector<std::vector<std::uint8_t>> later;

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "support/dirs.hpp"
 #include "node/checkpoint.hpp"
 #include "node/event_log.hpp"
 #include "node/simulation.hpp"
@@ -18,7 +19,7 @@ using namespace npsnet;
 
 namespace {
 
-const std::string kLan = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/lan.toml";
+const std::string kLan = std::string(npsnet::dirs::source()) + "/tests/multinode/data/lan.toml";
 
 std::filesystem::path write_text(const std::string& name, const std::string& text) {
   const auto p = test::scratch_dir() / name;

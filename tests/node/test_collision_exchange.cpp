@@ -12,6 +12,7 @@
 
 #include <map>
 
+#include "support/dirs.hpp"
 #include "node/collision_outcome.hpp"
 #include "node/dis_mapping.hpp"
 #include "wire_support.hpp"
@@ -20,7 +21,7 @@ using namespace npsnet;
 
 namespace {
 
-const std::string kLan = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/lan.toml";
+const std::string kLan = std::string(npsnet::dirs::source()) + "/tests/multinode/data/lan.toml";
 constexpr double kTimeoutS = 2.4;  // heartbeat 1 s (Annex C ratio 5:12)
 constexpr int kTicks = 70;         // 7 s: the kill at ~3 s, then 4 heartbeats
 

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "support/dirs.hpp"
 #include "support/scratch.hpp"
 
 extern char** environ;
@@ -24,7 +25,7 @@ namespace {
 // `ms` more milliseconds. Returns false when it had already ended.
 template <class Ready>
 bool run_and_kill(std::vector<std::string> args, Ready ready, int ms) {
-  args.insert(args.begin(), std::string(NPSNET_BINARY_DIR) + "/npsnet");
+  args.insert(args.begin(), std::string(npsnet::dirs::binary()) + "/npsnet");
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);

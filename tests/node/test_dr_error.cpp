@@ -9,6 +9,7 @@
 #include <set>
 #include <nlohmann/json.hpp>
 
+#include "support/dirs.hpp"
 #include "node/dr_error.hpp"
 #include "support/npsnet_cli.hpp"
 #include "support/scratch.hpp"
@@ -130,7 +131,7 @@ TEST(DrError, CommandPrintsTheFiguresAndRejectsBadLogs) {
 TEST(DrError, TrackEveryLogsEveryVehicleAtItsTicks) {
   const auto dir = fresh_dir("track-every");
   const auto events = dir / "e.jsonl";
-  const auto o = test::npsnet_cli("run --scenario " + (fs::path(NPSNET_SOURCE_DIR) / "tests/multinode/data/lan.toml").string() +
+  const auto o = test::npsnet_cli("run --scenario " + (fs::path(npsnet::dirs::source()) / "tests/multinode/data/lan.toml").string() +
                                   " --no-render --quiet --seconds 2 --track-every 0.2 --events " + events.string());
   ASSERT_EQ(o.rc, 0) << o.text;
   std::ifstream in(events);

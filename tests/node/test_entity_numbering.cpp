@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "support/dirs.hpp"
 #include "net/codec.hpp"
 #include "node/net_bridge.hpp"
 #include "node/ownership.hpp"
@@ -43,7 +44,7 @@ TEST(EntityNumbering, OwnIdsRunAcrossApplicationsPast32767) {
 }
 
 TEST(EntityNumbering, ANodeOf40000VehiclesPublishesThemAllAndIsAddressedInItsSecondApplication) {
-  world::Scenario sc = world::load_scenario(std::string(NPSNET_SOURCE_DIR).append("/scenarios/default.toml"));
+  world::Scenario sc = world::load_scenario(std::string(npsnet::dirs::source()).append("/scenarios/default.toml"));
   sc.background_vehicles = 40000;
   const world::World w = world::build_world(sc);
   ASSERT_GT(w.ents.size(), 32767u);

@@ -32,16 +32,17 @@
 
 #include <algorithm>
 
+#include "support/dirs.hpp"
 #include "wire_support.hpp"
 
 using namespace npsnet;
 
 namespace {
 
-const std::string kLan = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/lan.toml";
-const std::string kRestart = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/restart.toml";
-const std::string kRestartBlast = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/restart_blast.toml";
-const std::string kRestartRound = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/restart_round.toml";
+const std::string kLan = std::string(npsnet::dirs::source()) + "/tests/multinode/data/lan.toml";
+const std::string kRestart = std::string(npsnet::dirs::source()) + "/tests/multinode/data/restart.toml";
+const std::string kRestartBlast = std::string(npsnet::dirs::source()) + "/tests/multinode/data/restart_blast.toml";
+const std::string kRestartRound = std::string(npsnet::dirs::source()) + "/tests/multinode/data/restart_round.toml";
 constexpr double kTimeoutS = 2.4;  // heartbeat 1 s (Annex C ratio 5:12)
 constexpr int kKillAt = 40, kDeadFor = 40, kAfter = 40;  // ticks of 0.1 s
 

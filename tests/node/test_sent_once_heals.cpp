@@ -20,14 +20,15 @@
 #include <set>
 #include <vector>
 
+#include "support/dirs.hpp"
 #include "wire_support.hpp"
 
 using namespace npsnet;
 
 namespace {
 
-const std::string kLan = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/lan.toml";
-const std::string kRestart = std::string(NPSNET_SOURCE_DIR) + "/tests/multinode/data/restart.toml";
+const std::string kLan = std::string(npsnet::dirs::source()) + "/tests/multinode/data/lan.toml";
+const std::string kRestart = std::string(npsnet::dirs::source()) + "/tests/multinode/data/restart.toml";
 constexpr double kTimeoutS = 2.4;  // heartbeat 1 s (Annex C ratio 5:12)
 constexpr int kPduEntityState = 1, kPduDetonation = 3, kPduCollision = 4;
 

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <string>
 
+#include "support/dirs.hpp"
 #include "render/font.hpp"
 #include "render/gl_context.hpp"
 #include "render/renderer.hpp"
@@ -25,7 +26,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kSrc = NPSNET_SOURCE_DIR;
+const fs::path kSrc = npsnet::dirs::source();
 
 // Flat ground at 50 m, 129 x 129 posts 2 m apart (256 m square), the bundled kinds and models;
 // post(i, j), when given, sets each post's height instead (the terrain is built from them).

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <string>
 
+#include "support/dirs.hpp"
 #include "dynamics/dynamics.hpp"
 #include "world/changes.hpp"
 #include "support/scratch.hpp"
@@ -13,7 +14,7 @@
 
 namespace npsnet::test {
 
-inline std::filesystem::path source(const std::string& rel) { return std::filesystem::path(NPSNET_SOURCE_DIR) / rel; }
+inline std::filesystem::path source(const std::string& rel) { return std::filesystem::path(npsnet::dirs::source()) / rel; }
 
 // An id made of a prefix and a number, "v" and 12 -> "v12". Appended: GCC 12 warns falsely
 // (-Wstringop-overflow, -Wrestrict) where "v" + std::to_string(12) is inlined.

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <string>
 
+#include "support/dirs.hpp"
+
 namespace npsnet::test {
 
 struct CliOut {
@@ -14,7 +16,7 @@ struct CliOut {
 };
 
 inline CliOut npsnet_cli(const std::string& args) {
-  const std::string cmd = std::string(NPSNET_BINARY_DIR) + "/npsnet " + args + " 2>&1";
+  const std::string cmd = std::string(npsnet::dirs::binary()) + "/npsnet " + args + " 2>&1";
   CliOut o;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return o;

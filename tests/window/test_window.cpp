@@ -14,6 +14,7 @@
 #include <sstream>
 #include <thread>
 
+#include "support/dirs.hpp"
 #include "support/fixture.hpp"
 #include "window_support.hpp"
 
@@ -36,7 +37,7 @@ TEST(Window, HeldKeysDriveTurnAndCollide) {
   const auto dir = npsnet::test::fresh_dir("window");
   const std::string events = (dir / "events.jsonl").string(), rec = (dir / "input.jsonl").string(),
                     out = (dir / "out.txt").string();
-  const std::string bin = std::string(NPSNET_BINARY_DIR) + "/npsnet";
+  const std::string bin = std::string(npsnet::dirs::binary()) + "/npsnet";
   const pid_t pid = test::spawn_logged({bin, "run", "--window", "--scenario", test::source("tests/node/data/window.toml").string(),
                                         "--seconds", "11", "--events", events, "--snapshots", (dir / "snap").string(),
                                         "--record-input", rec},

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <thread>
 
+#include "support/dirs.hpp"
 #include "support/fixture.hpp"
 #include "window_support.hpp"
 
@@ -29,7 +30,7 @@ std::string first_line(const std::string& cmd) {
 void quit_by(const std::string& how, const std::string& expected_reason) {
   const auto dir = test::fresh_dir("window-quit-" + how);
   const std::string events = (dir / "events.jsonl").string(), out = (dir / "out.txt").string();
-  const pid_t pid = test::spawn_logged({std::string(NPSNET_BINARY_DIR) + "/npsnet", "run", "--window", "--scenario",
+  const pid_t pid = test::spawn_logged({std::string(npsnet::dirs::binary()) + "/npsnet", "run", "--window", "--scenario",
                                         test::source("tests/node/data/window.toml").string(), "--seconds", "60",
                                         "--events", events, "--snapshots", (dir / "snap").string()},
                                        out);

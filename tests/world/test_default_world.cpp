@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "support/dirs.hpp"
 #include "core/constants.hpp"
 #include "support/scratch.hpp"
 #include "world/terrain.hpp"
@@ -24,7 +25,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kTerrainDir = fs::path(NPSNET_SOURCE_DIR) / "terrain";
+const fs::path kTerrainDir = fs::path(npsnet::dirs::source()) / "terrain";
 constexpr double kWaterLevelM = 200.0;  // scenarios/default.toml water_level_m
 constexpr double kReserveX0 = 2000, kReserveX1 = 14000, kReserveY0 = 2000, kReserveY1 = 8000;
 const geo::Geodetic kOrigin{35.98, -121.25, 0.0};  // Fort Hunter-Liggett, as in the scenario
@@ -243,7 +244,7 @@ TEST_F(DefaultWorld, TelephonePolesFollowARoad) {
 }
 
 TEST(DefaultWorldGenerator, ReproducesTheBundledFiles) {
-  const fs::path exe = fs::path(NPSNET_BINARY_DIR) / "tools" / "make_default_world";
+  const fs::path exe = fs::path(npsnet::dirs::binary()) / "tools" / "make_default_world";
   if (!fs::exists(exe)) GTEST_SKIP() << "generator not built: " << exe;
   const fs::path out = npsnet::test::scratch_dir() / "default_world";
   fs::remove_all(out);

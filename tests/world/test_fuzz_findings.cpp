@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "support/dirs.hpp"
 #include "world/kinds.hpp"
 #include "world/scenario.hpp"
 
@@ -13,7 +14,7 @@ using namespace npsnet;
 
 namespace {
 
-const std::string kModels = std::string(NPSNET_SOURCE_DIR) + "/models/fuzz-kinds.toml";
+const std::string kModels = std::string(npsnet::dirs::source()) + "/models/fuzz-kinds.toml";
 
 // Every problem `load` throws, as text (none: it loaded).
 template <class F>
@@ -33,7 +34,7 @@ std::vector<std::string> kinds_problems(const std::string& text) {
 }
 
 std::vector<std::string> scenario_problems(const std::string& text) {
-  return problems([&] { (void)world::load_scenario_text(text, std::string(NPSNET_SOURCE_DIR) + "/scenarios/fuzz.toml"); });
+  return problems([&] { (void)world::load_scenario_text(text, std::string(npsnet::dirs::source()) + "/scenarios/fuzz.toml"); });
 }
 
 const char* kTank = "[tank]\nmobility = \"ground\"\nmass_kg = 1000\nstates = [\"intact\"]\nmodels = [\"m1a1.obj\"]\n";

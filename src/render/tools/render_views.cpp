@@ -10,6 +10,7 @@
 #include <map>
 #include <string>
 
+#include "npsnet_dirs.hpp"
 #include "render/renderer.hpp"
 #include "world/scenario.hpp"
 
