@@ -9,15 +9,14 @@
 #include <filesystem>
 #include <string_view>
 
-#include "npsnet_dirs.hpp"
-
 namespace npsnet::fuzz {
 
 // fuzz/data: a small world (33 x 33 terrain posts, ~220 objects, the bundled kinds with one box
 // model) that the scenario seeds name, so that a world builds in well under a millisecond.
-inline std::filesystem::path data_dir() { return NPSNET_FUZZ_DATA_DIR; }
+// (Both in fuzz_dirs.cpp, the one object of a target that depends on the checkout's folder.)
+std::filesystem::path data_dir();
 // The source tree (the bundled models/ and kinds).
-inline std::filesystem::path source_dir() { return NPSNET_SOURCE_DIR; }
+std::filesystem::path source_dir();
 
 inline std::string_view text(const std::uint8_t* data, std::size_t size) {
   return {reinterpret_cast<const char*>(data), size};

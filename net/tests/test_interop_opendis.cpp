@@ -231,7 +231,6 @@ void expect_same(const Fields& ours, const Fields& theirs, const std::string& wh
   EXPECT_GT(compared, 20u) << what;
 }
 
-std::string js_dir() { return NET_TEST_JS_DIR; }
 
 class OpenDisInterop : public ::testing::Test {
  protected:
@@ -245,7 +244,7 @@ class OpenDisInterop : public ::testing::Test {
       const auto r = run_command(cmd);
       ASSERT_EQ(r.rc, 0) << "npm ci in " << js_dir() << " failed:\n" << r.out;
     }
-    path_ = std::string(NET_TEST_BINARY_DIR) + "/opendis_" + std::to_string(::getpid()) + ".bin";
+    path_ = binary_dir() + "/opendis_" + std::to_string(::getpid()) + ".bin";
   }
   void TearDown() override {
     if (!path_.empty()) std::filesystem::remove(path_);

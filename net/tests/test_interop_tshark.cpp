@@ -16,7 +16,7 @@ using namespace nettest;
 namespace {
 
 std::string pcap_path(const std::string& tag) {
-  return std::string(NET_TEST_BINARY_DIR) + "/interop_" + tag + "_" + std::to_string(::getpid()) + ".pcap";
+  return binary_dir() + "/interop_" + tag + "_" + std::to_string(::getpid()) + ".pcap";
 }
 
 // tshark -T fields for one frame; returns field -> value ("a,b,c" when a field repeats).

@@ -38,9 +38,11 @@ inline std::vector<std::uint8_t> read_file(const std::filesystem::path& p) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-inline std::filesystem::path captures_dir() {
-  return std::filesystem::path(NET_TEST_DATA_DIR) / "captures";
-}
+// The checkout's and build's folders (test_dirs.cpp): the captures, the open-dis scripts, the
+// build tree (scratch files).
+std::filesystem::path captures_dir();
+std::string js_dir();
+std::string binary_dir();
 
 inline net::VariableParameter vp(std::uint8_t type, std::uint8_t seed) {
   net::VariableParameter v;
