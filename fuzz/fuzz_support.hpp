@@ -9,14 +9,15 @@
 #include <filesystem>
 #include <string_view>
 
+#include "support/dirs.hpp"
+
 namespace npsnet::fuzz {
 
 // fuzz/data: a small world (33 x 33 terrain posts, ~220 objects, the bundled kinds with one box
 // model) that the scenario seeds name, so that a world builds in well under a millisecond.
-// (Both in fuzz_dirs.cpp, the one object of a target that depends on the checkout's folder.)
-std::filesystem::path data_dir();
+inline std::filesystem::path data_dir() { return npsnet::dirs::fuzz_data(); }
 // The source tree (the bundled models/ and kinds).
-std::filesystem::path source_dir();
+inline std::filesystem::path source_dir() { return npsnet::dirs::source(); }
 
 inline std::string_view text(const std::uint8_t* data, std::size_t size) {
   return {reinterpret_cast<const char*>(data), size};

@@ -32,7 +32,17 @@ if ! command -v clang++ >/dev/null 2>&1; then
   exit 2
 fi
 source scripts/ccache.sh
-CC=clang CXX=clang++ cmake -S . -B "$B" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${ccache_args[@]}" -DNPSNET_FUZZ=ON \
+# With ccache, two things made every object miss from a clone in another folder: the coverage
+# ignore list is named by its absolute path, which ccache hashes as text (it does not rewrite this
+# option under CCACHE_BASEDIR), so its content is hashed instead; and a clang precompiled header
+# holds the clone's paths and is not itself cached (its hash differs in every clone), so this tree
+# has none (NPSNET_PCH=OFF).
+pch=()
+if [ "$ccache_on" = 1 ]; then
+  export CCACHE_IGNOREOPTIONS="-fsanitize-coverage-ignorelist=*" CCACHE_EXTRAFILES="$PWD/fuzz/coverage-ignore.txt"
+  pch=(-DNPSNET_PCH=OFF)
+fi
+CC=clang CXX=clang++ cmake -S . -B "$B" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${ccache_args[@]}" "${pch[@]}" -DNPSNET_FUZZ=ON \
   -DNPSNET_TESTS=OFF -DNPSNET_BENCH=OFF -DNPSNET_RENDER=OFF >/dev/null
 cmake --build "$B" -j2 --target "${targets[@]/#/fuzz_}"
 

@@ -10,15 +10,17 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 t0=$SECONDS
 stage() { echo "== test.sh: $1 ($(( (SECONDS - t0) / 60 )) min so far)"; }
-# What the last build took from ccache (scripts/ccache.sh), when it is used.
+# What the last build took from ccache (scripts/ccache.sh), when it is used; then zeroes the count.
 cached() {
-  if [ "${NPSNET_NO_CCACHE:-0}" != "1" ] && command -v ccache >/dev/null 2>&1; then
-    echo "== test.sh: ccache, $1: $(ccache -s | sed -n 's/^ *\(Hits\|Misses\): *\([0-9]*\) *\/ *\([0-9]*\).*/\1 \2/p' | paste -sd' ') of $(ccache -s | sed -n 's/^Cacheable calls: *[0-9]* *\/ *\([0-9]*\).*/\1/p') compiles"
-    ccache -z >/dev/null
-  fi
+  [ "$ccache_on" = 1 ] || return 0
+  ccache --print-stats | awk -v tree="$1" '{ s[$1] = $2 } END {
+    hits = s["direct_cache_hit"] + s["preprocessed_cache_hit"]; misses = s["cache_miss"]
+    printf "== test.sh: ccache, %s: Hits %d Misses %d of %d compiles\n", tree, hits, misses, hits + misses }'
+  ccache -z >/dev/null
 }
 bash scripts/install-deps.sh
-if command -v ccache >/dev/null 2>&1; then ccache -z >/dev/null; fi
+source scripts/ccache.sh  # after install-deps.sh, which installs ccache
+if [ "$ccache_on" = 1 ]; then ccache -z >/dev/null; fi
 stage "build"
 bash scripts/build.sh build
 cached build

@@ -6,4 +6,5 @@
 namespace npsnet::dirs {
 const char* source() { return NPSNET_SOURCE_DIR; }
 const char* binary() { return NPSNET_BINARY_DIR; }
+const char* fuzz_data() { return NPSNET_FUZZ_DATA_DIR; }
 }  // namespace npsnet::dirs
