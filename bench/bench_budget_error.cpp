@@ -15,7 +15,9 @@
 // --crowd N: the 100,000-vehicle crowd of bench_broadphase (crowd_scene.hpp) on the default
 //   world: the full continuous step (on --threads T, default 1: the node's pool) with the default
 //   budget and without one (ample): the first tick (every contact new) and --ticks - 1 after
-//   (vehicles moved back and forth), ms and the pairs each tier decided. --spatial: the same crowd
+//   (vehicles moved back and forth), ms and the pairs each tier decided, and where the step's time
+//   went (Detector::pass_times: entity pass, kept broad phase, pair loop, and the tiers the budget
+//   governs, timed and as charged). --spatial: the same crowd
 //   stored in Z order of its cells (crowd_scene.hpp): what a spatial order of the entities gives.
 // Columns (vehicles, --fixed): budget_ms, pairs (needing a narrow phase, with a verdict), lowered
 // (pairs given a tier below their exact one), contacts, truth (FCL contacts), false_pos, misses,
@@ -242,9 +244,11 @@ int crowd(int n, int threads, int ticks, bool spatial, std::string csv) {
   for (size_t e = 0; e < w.ents.size(); ++e) step.push_back(w.ents.vel[e] * dt);
   if (csv.empty()) csv = std::string(npsnet::dirs::source()) + "/bench/results/crowd_budget.csv";
   std::ofstream f(csv);
-  f << "vehicles,threads,budget_ms,tick,ms,contacts,narrow_pairs,lowered,decided_sphere,decided_box,decided_hull,decided_mesh\n";
-  std::printf("| budget (ms) | tick | ms | contacts | pairs given a tier | lowered | decided by sphere / box / hull / mesh |\n"
-              "|---|---|---|---|---|---|---|\n");
+  f << "vehicles,threads,budget_ms,tick,ms,contacts,narrow_pairs,lowered,decided_sphere,decided_box,decided_hull,decided_mesh,"
+       "entities_ms,broad_ms,pairs_ms,tiers_ms,charged_ms\n";
+  std::printf("| budget (ms) | tick | ms | contacts | pairs given a tier | lowered | decided by sphere / box / hull / mesh |"
+              " entity pass / broad phase / pair loop / tiers (ms) | tiers as charged (ms) |\n"
+              "|---|---|---|---|---|---|---|---|---|\n");
   core::Jobs jobs(threads);
   for (double budget : {world::kDefaultCollisionBudgetMs, 1e9}) {
     collision::Detector det(collision::options_from("continuous", "auto", dt));
@@ -264,10 +268,13 @@ int crowd(int n, int threads, int ticks, bool spatial, std::string csv) {
       for (int t = 0; t < 5; ++t) d[t] = s.tier_decided[t] - before.tier_decided[t];
       const long long lowered = s.tier_lowered - before.tier_lowered;
       const std::string b = budget > 1e8 ? "none" : std::to_string(budget).substr(0, 4);
-      std::printf("| %s | %d | %.1f | %zu | %zu | %lld | %lld / %lld / %lld / %lld |\n", b.c_str(), k, ms, out.size(),
-                  det.tier_choices().size(), lowered, (long long)d[1], (long long)d[2], (long long)d[3], (long long)d[4]);
+      const collision::PassTimes& pt = det.pass_times();
+      std::printf("| %s | %d | %.1f | %zu | %zu | %lld | %lld / %lld / %lld / %lld | %.2f / %.2f / %.2f / %.2f | %.2f |\n", b.c_str(), k,
+                  ms, out.size(), det.tier_choices().size(), lowered, (long long)d[1], (long long)d[2], (long long)d[3],
+                  (long long)d[4], pt.entities, pt.broad, pt.pairs, pt.tiers, pt.charged);
       f << n << ',' << threads << ',' << b << ',' << k << ',' << ms << ',' << out.size() << ',' << det.tier_choices().size() << ',' << lowered
-        << ',' << d[1] << ',' << d[2] << ',' << d[3] << ',' << d[4] << '\n';
+        << ',' << d[1] << ',' << d[2] << ',' << d[3] << ',' << d[4] << ',' << pt.entities << ',' << pt.broad << ',' << pt.pairs
+        << ',' << pt.tiers << ',' << pt.charged << '\n';
       std::fflush(stdout);
     }
     if (ticks % 2 == 0)  // back where it started (odd ticks end there)

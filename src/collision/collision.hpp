@@ -144,6 +144,17 @@ struct DetectStats {
   int64_t tier_lowered = 0;  // auto: pairs given a tier below their exact one by the budget
 };
 
+// Where the last detect's time went (ms): its passes by the steady clock, for benchmarks and
+// reports only. No decision reads them (the budget is modelled, so results never depend on timing).
+struct PassTimes {
+  double total = 0;     // the whole detect
+  double entities = 0;  // continuous: each body's sweep, swept box and fixed objects
+  double broad = 0;     // the kept broad phase (PairCache::pairs)
+  double pairs = 0;     // the moving pairs' sphere sweeps and episode look-ups
+  double tiers = 0;     // allocate_tiers and the narrow phases it allowed: what the budget governs
+  double charged = 0;   // those narrow phases as the budget charged them (kTierCostUs; modelled)
+};
+
 class Detector {
  public:
   explicit Detector(const Options& o = Options{}) : opt_(o) {}
@@ -151,6 +162,7 @@ class Detector {
   // by (time of impact, entity ids) so that the result does not depend on entity order.
   void detect(const world::World& w, std::vector<Contact>& out);
   const DetectStats& stats() const { return stats_; }
+  const PassTimes& pass_times() const { return times_; }
   const Options& options() const { return opt_; }
   // Worker threads for detect (continuous method); nullptr (the default) = this thread only.
   // The pool must outlive the detector's use of it.
@@ -253,6 +265,7 @@ class Detector {
   bool was_touching(int a, int b) const;  // moving pair (a, b) in contact last tick
   std::vector<Contact> candidates_;
   DetectStats stats_;
+  PassTimes times_;
   // continuous
   std::vector<Vec3> c0_, c1_;           // sphere centres at the start and end of the tick
   std::vector<float> r_sphere_, r_bound_;  // thesis sphere radius; bound of the model (true radius)

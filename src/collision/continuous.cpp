@@ -3,10 +3,12 @@
 // shapes, the passes of a tick (detect_continuous), their lanes and an entity's fixed objects;
 // the tests of one moving pair and the narrow phase are in pair_tests.cpp.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 #include "collision/collision.hpp"
+#include "core/stopwatch.hpp"
 #include "world/pose.hpp"
 
 namespace npsnet::collision {
@@ -249,6 +251,11 @@ void Detector::detect_continuous(const world::World& w) {
     lane(jobs_ ? std::max(jobs_->threads(), jobs_->chunks(count, grain, per_thread)) - 1 : 0);
     merge_lanes(core::run_chunks(jobs_, count, grain, fn, per_thread));
   };
+  auto t = std::chrono::steady_clock::now();
+  auto lap = [&t](double& into) {
+    into = core::ms_since(t);
+    t = std::chrono::steady_clock::now();
+  };
   in_lanes(m, kEntityGrain, kEntityChunksPerThread, [&](int c, size_t i0, size_t i1) __attribute__((flatten)) {
     for (size_t i = i0; i < i1; ++i) {
       const int e = static_cast<int>(order_[i]);
@@ -279,10 +286,12 @@ void Detector::detect_continuous(const world::World& w) {
       fixed_contacts(w, i, lanes_[c]);
     }
   });
+  lap(times_.entities);
 
   // Moving pairs: the fat boxes kept from the last tick (pair_cache.hpp; entities keep their
   // index), then the analytic sweep, then the tiers.
   moving_.pairs(boxes_, order_, ents.size(), pairs_, jobs_);
+  lap(times_.broad);
   in_lanes(pairs_.size(), kPairGrain, kPairChunksPerThread, [&](int c, size_t p0, size_t p1) {
     for (size_t p = p0; p < p1; ++p) {
       if (p + 2 * kPairAhead < p1) prefetch_pair(w, p + 2 * kPairAhead, 0);
@@ -291,6 +300,7 @@ void Detector::detect_continuous(const world::World& w) {
       pair_contact(w, p, lanes_[c]);
     }
   });
+  lap(times_.pairs);
 
   // Auto tier: the pairs that need a narrow phase get their tier from the scene and the budget
   // (scene_tiers.cpp), then are decided.
@@ -302,6 +312,7 @@ void Detector::detect_continuous(const world::World& w) {
     });
     pending_.clear();
   }
+  lap(times_.tiers);
 
   // Deterministic order: time of impact, then the id ranks (not the storage order).
   const auto& rank = rank_.ranks();

@@ -3,10 +3,12 @@
 // L3 (rays + Haines). The continuous method is in continuous.cpp.
 #include <algorithm>
 #include <cassert>
+#include <chrono>
 #include <cmath>
 #include <string_view>
 
 #include "collision/collision.hpp"
+#include "core/stopwatch.hpp"
 #include "core/constants.hpp"
 #include "core/radix_sort.hpp"
 #include "world/pose.hpp"
@@ -25,6 +27,8 @@ uint64_t pair_key(int a, int b, bool fixed) {
 
 void Detector::detect(const world::World& w, std::vector<Contact>& out) {
   assert(w.valid());
+  const auto t0 = std::chrono::steady_clock::now();
+  times_ = PassTimes{};
   touching_.clear();
   candidates_.clear();
   core::radix_sort(previous_, sort_scratch_);  // 59,000 keys in the 100,000-vehicle crowd
@@ -43,6 +47,7 @@ void Detector::detect(const world::World& w, std::vector<Contact>& out) {
     ++stats_.contacts;
   }
   previous_.swap(touching_);
+  times_.total = core::ms_since(t0);
 }
 
 uint64_t contact_key(int a, int b, bool fixed) { return pair_key(a, b, fixed); }

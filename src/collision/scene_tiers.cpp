@@ -53,13 +53,20 @@ void Detector::allocate_tiers(const world::World& w) {
     if (x.b_fixed != y.b_fixed) return x.b_fixed < y.b_fixed;
     return x.rank_b < y.rank_b;
   };
-  // Only a prefix needs its order: past the required pairs, a pair either gets a tier above the
-  // sphere (charged at least kCheapest) or finds none fits; from then on the budget left is below
-  // kCheapest, so every pair after it gets the sphere tier whatever its place (choices_ lists
-  // them in no particular order). The prefix: the required pairs and as many as the budget could
-  // pay for at kCheapest, sorted (nth_element, then sort), and sorted further if it runs out first.
-  constexpr double kCheapest = kTierCostUs[static_cast<int>(Tier::Box)];
-  static_assert(kCheapest <= kTierCostUs[static_cast<int>(Tier::Hull)] && kCheapest <= kTierCostUs[static_cast<int>(Tier::Mesh)]);
+  // Every pair gets at least the sphere tier, which is never lowered: its cost for all of them is
+  // set aside first, and the rest of the budget pays for raising pairs above it, most important
+  // first (a raise to tier t costs kTierCostUs[t] - the sphere's). So the modelled narrow phase
+  // fits the budget whenever the sphere tier alone does; past that, only the required pairs raise.
+  constexpr double kSphereUs = kTierCostUs[static_cast<int>(Tier::Sphere)];
+  auto raise_us = [](Tier t) { return kTierCostUs[static_cast<int>(t)] - kSphereUs; };
+  // Only a prefix needs its order: past the required pairs, a pair either is raised (charged at
+  // least kCheapest) or finds no raise fits; from then on the budget left is below kCheapest, so
+  // every pair after it gets the sphere tier whatever its place (choices_ lists them in no
+  // particular order). The prefix: the required pairs and as many as the budget could raise at
+  // kCheapest, sorted (nth_element, then sort), and sorted further if it runs out first.
+  constexpr double kCheapest = kTierCostUs[static_cast<int>(Tier::Box)] - kSphereUs;
+  static_assert(kCheapest > 0 && kTierCostUs[static_cast<int>(Tier::Box)] <= kTierCostUs[static_cast<int>(Tier::Hull)] &&
+                kTierCostUs[static_cast<int>(Tier::Hull)] <= kTierCostUs[static_cast<int>(Tier::Mesh)]);
   const auto first = pending_order_.begin();
   const size_t n = pending_order_.size();
   size_t sorted = 0;  // pending_order_[0, sorted) is in order, and before every later one
@@ -69,7 +76,8 @@ void Detector::allocate_tiers(const world::World& w) {
     std::sort(first + sorted, first + k, more_important);
     sorted = k;
   };
-  double left_us = opt_.budget_ms * 1000.0;
+  double left_us = opt_.budget_ms * 1000.0 - kSphereUs * static_cast<double>(n);
+  times_.charged = kSphereUs * static_cast<double>(n) / 1000.0;
   sort_to(required + static_cast<size_t>(left_us > 0 ? std::min(left_us / kCheapest, 1e9) : 0.0) + 16);
   for (size_t i = 0; i < n; ++i) {
     if (i == sorted && (i < required || left_us >= kCheapest)) sort_to(2 * sorted);
@@ -77,9 +85,10 @@ void Detector::allocate_tiers(const world::World& w) {
     Pending& q = pending_[o.pending];
     Tier t = q.exact;
     if (!q.required)
-      while (t > Tier::Sphere && kTierCostUs[static_cast<int>(t)] > left_us) t = static_cast<Tier>(static_cast<int>(t) - 1);
+      while (t > Tier::Sphere && raise_us(t) > left_us) t = static_cast<Tier>(static_cast<int>(t) - 1);
     q.tier = t;
-    left_us -= kTierCostUs[static_cast<int>(t)];
+    left_us -= raise_us(t);
+    times_.charged += raise_us(t) / 1000.0;
     if (t < q.exact) ++stats_.tier_lowered;
     choices_.push_back({q.k.a, q.k.b, q.k.b_fixed, q.required, q.exact, t});
   }

@@ -10,11 +10,13 @@
 #include <map>
 #include <string>
 
+#include "core/stopwatch.hpp"
 #include "npsnet_dirs.hpp"
 #include "render/renderer.hpp"
 #include "world/scenario.hpp"
 
 using namespace npsnet;
+using core::ms_since;
 
 namespace {
 
@@ -57,10 +59,6 @@ world::World gallery_world(const std::filesystem::path& kinds_file) {
   }
   w.index_fixed();
   return w;
-}
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace
