@@ -105,11 +105,13 @@ struct Options {
 //    player-driven vehicle (ents.driven), a snapshotted vehicle (ents.snapshots: its collisions
 //    make imminent/result snapshots), or either body's bounding sphere inside a viewer's view
 //    volume (set_views);
+//  * every pair gets at least the sphere tier (the thesis spheres swept), so a pair is never
+//    skipped and every contact the sphere tier finds is reported; its modelled cost for all the
+//    pairs is set aside from the budget (budget_ms, scenario key collision_budget_ms) first;
 //  * the others, most important first (closing speed, then id order), get the highest tier up
-//    to their exact one whose modelled cost (kTierCostUs) fits what is left of the budget
-//    (budget_ms, scenario key collision_budget_ms, after the required pairs are charged); when
-//    none fits, the sphere tier: the thesis spheres swept, so a pair is never skipped and every
-//    contact the sphere tier finds is reported. The least important pairs are lowered first.
+//    to their exact one whose raise (its kTierCostUs less the sphere's) fits what is left, after
+//    the required pairs' raises; else the sphere tier. The least important pairs are lowered
+//    first, and the modelled cost of all fits the budget whenever the sphere tier's alone does.
 // The cost model is fixed (not timed), so the choice, the events and the world are the same on
 // every run and thread count. Every contact names the tier that decided it (Contact::tier).
 // Modelled cost of one pair's narrow phase at each tier (us; index = Tier): the time per pair of

@@ -8,9 +8,9 @@
 #include <string_view>
 
 #include "collision/collision.hpp"
-#include "core/stopwatch.hpp"
 #include "core/constants.hpp"
 #include "core/radix_sort.hpp"
+#include "core/stopwatch.hpp"
 #include "world/pose.hpp"
 
 namespace npsnet::collision {
