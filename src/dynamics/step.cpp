@@ -53,16 +53,25 @@ bool on_course(const Vec2& d, const Vec2& to) {
   return ahead > 0 && std::abs(off) <= ahead * kCourseHoldTan;
 }
 
-// flatten: the terrain lookups (Terrain::height, is_water) and terrain following inline here.
+// A ground vehicle moved by step_vehicle, its terrain following still to do (the direction of
+// its stored heading).
+struct ToFollow {
+  int e;
+  Vec2 dir;
+};
+
+// flatten: the terrain lookups (Terrain::height, is_water) inline here.
 // The vehicle moves along its stored (float) heading, the one terrain following, collision and
-// the network see.
-[[gnu::flatten]] void step_vehicle(world::World& w, int e, double dt, core::HeadingMemo* memo) {
+// the network see. A ground vehicle's terrain following is left to the caller: returns true with
+// `follow` set (it reads and writes only the vehicle's own pose: step() does it for a few
+// vehicles together, after their moves).
+[[gnu::flatten]] bool step_vehicle(world::World& w, int e, double dt, core::HeadingMemo* memo, ToFollow& follow) {
   auto& ents = w.ents;
   const world::Kind& k = w.kinds[ents.kind[e]];
   const bool dead = ents.state[e] + 1 >= static_cast<int>(k.states.size());
   if (dead) {
     ents.vel[e].setZero();
-    return;
+    return false;
   }
   // Steering: fleeing overrides the route; otherwise the current waypoint, if any.
   double heading = ents.heading_deg[e];
@@ -111,10 +120,12 @@ bool on_course(const Vec2& d, const Vec2& to) {
   ents.vel[e] = (next - ents.pos[e]) / dt;
   ents.pos[e] = next;
   ents.heading_deg[e] = static_cast<float>(heading);
-  // Terrain following along the stored heading: d, unless the shore turned the vehicle away.
-  if (k.mobility == Mobility::Ground) follow_terrain_along(w, e, heading == d_heading ? d : dir_of_float(heading, e, memo));
   if (k.mobility == Mobility::Ship || k.mobility == Mobility::Air) ents.pitch_deg[e] = ents.roll_deg[e] = 0;
   burn_fuel(w, e, speed, dt);
+  if (k.mobility != Mobility::Ground) return false;
+  // Terrain following along the stored heading: d, unless the shore turned the vehicle away.
+  follow = {e, heading == d_heading ? d : dir_of_float(heading, e, memo)};
+  return true;
 }
 
 // March the segment from `a` to `b` along the heightfield in steps of half a post; bisect the
@@ -202,10 +213,12 @@ void follow_terrain_along(world::World& w, int e, const Vec2& f) {
   const double half_wid = std::max(0.5, 0.5 * static_cast<double>(m.bbox_max.x() - m.bbox_min.x()));
   const Vec2 r(f.y(), -f.x());  // right of forward
   const Vec2 c(ents.pos[e].x(), ents.pos[e].y());
-  auto h = [&](const Vec2& p) { return w.terrain.height(p.x(), p.y()); };
-  // The four corners once each (they were sampled twice: same values, half the lookups).
-  const double fr = h(c + f * half_len + r * half_wid), fl = h(c + f * half_len - r * half_wid);
-  const double br = h(c - f * half_len + r * half_wid), bl = h(c - f * half_len - r * half_wid);
+  // The four corners once each, in one Terrain::heights4 (the bits of four height() calls).
+  const Vec2 p[4] = {c + f * half_len + r * half_wid, c + f * half_len - r * half_wid, c - f * half_len + r * half_wid,
+                     c - f * half_len - r * half_wid};
+  double hts[4];
+  w.terrain.heights4({p[0].x(), p[1].x(), p[2].x(), p[3].x()}, {p[0].y(), p[1].y(), p[2].y(), p[3].y()}, hts);
+  const double fr = hts[0], fl = hts[1], br = hts[2], bl = hts[3];
   const double hf = 0.5 * (fr + fl), hb = 0.5 * (br + bl), hr = 0.5 * (fr + br), hl = 0.5 * (fl + bl);
   ents.pos[e].z() = 0.25 * (hf + hb + hr + hl);
   // float(rad2deg(atan2(rise, run))), the same bits, mostly without libm (core/atan_float.hpp).
@@ -233,7 +246,17 @@ void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::
   // the misses overlap instead of stalling one by one (no effect on any result). At 100,000
   // vehicles the first terrain lookup of each took a third of the stage's time (perf).
   constexpr size_t kPrefetchAhead = 8;
+  // A range's ground vehicles follow the terrain kFollowBatch at a time, after their moves: one
+  // vehicle's heights, slopes and angles are a long chain of dependent divisions and loads, and
+  // a few vehicles' chains side by side overlap (the same bits: each reads only its own pose).
+  constexpr int kFollowBatch = 8;
   auto vehicles = [&](int c, size_t e0, size_t e1) {
+    ToFollow batch[kFollowBatch];
+    int batched = 0;
+    auto follow_batch = [&] {
+      for (int b = 0; b < batched; ++b) follow_terrain_along(w, batch[b].e, batch[b].dir);
+      batched = 0;
+    };
     for (size_t e = e0; e < e1; ++e) {
       if (e + kPrefetchAhead < e1) {
         const size_t f = e + kPrefetchAhead;
@@ -242,9 +265,10 @@ void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::
         if (static_cast<size_t>(ents.leg[f]) < r.size()) core::prefetch(r.data() + ents.leg[f]);
       }
       if (!moves(e)) continue;
-      if (w.kinds[ents.kind[e]].mobility != Mobility::Munition) step_vehicle(w, static_cast<int>(e), dt, memo);
-      else span[c] = {std::min(span[c].first, e), e + 1};
+      if (w.kinds[ents.kind[e]].mobility == Mobility::Munition) span[c] = {std::min(span[c].first, e), e + 1};
+      else if (step_vehicle(w, static_cast<int>(e), dt, memo, batch[batched]) && ++batched == kFollowBatch) follow_batch();
     }
+    follow_batch();
   };
   core::run_chunks(jobs, n, kGrain, vehicles, kChunksPerThread);  // in `ranges` ranges (Jobs::chunks)
   size_t m0 = n, m1 = 0;

@@ -301,7 +301,7 @@ Terrain load_warped(const std::filesystem::path& file, GDALDatasetH ds) {
 
 Terrain::Terrain(int cols, int rows, double spacing_m, std::vector<float> heights,
                  const geo::Geodetic& origin)
-    : cols_(cols), rows_(rows), spacing_(spacing_m), h_(std::move(heights)), origin_(origin) {
+    : cols_(cols), rows_(rows), spacing_(spacing_m), inv_spacing_(1 / spacing_m), h_(std::move(heights)), origin_(origin) {
   if (cols < 2 || rows < 2) throw std::invalid_argument("Terrain: needs at least 2 x 2 posts");
   if (!(spacing_m > 0) || !std::isfinite(spacing_m))
     throw std::invalid_argument("Terrain: spacing must be positive");

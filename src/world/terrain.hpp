@@ -39,12 +39,36 @@ class Terrain {
     const double h00 = post(i, j), h10 = post(i + 1, j), h01 = post(i, j + 1), h11 = post(i + 1, j + 1);
     return (h00 * (1 - fx) + h10 * fx) * (1 - fy) + (h01 * (1 - fx) + h11 * fx) * fy;
   }
+  // height() of four points at once (a vehicle's corners), bit for bit: the same operations in
+  // the same order on each lane, the eight divisions by the spacing as two vector divisions (the
+  // divider, not the loads, bounded terrain following: perf, 500 vehicles).
+  void heights4(const double (&x)[4], const double (&y)[4], double (&h)[4]) const {
+    using D4 = double __attribute__((vector_size(32)));
+    using I4 = int __attribute__((vector_size(16)));
+    const D4 s = {spacing_, spacing_, spacing_, spacing_};
+    D4 u = D4{x[0], x[1], x[2], x[3]} / s, v = D4{y[0], y[1], y[2], y[3]} / s;
+    const double ui = cols_ - 1, vj = rows_ - 1;
+    // std::clamp(u, 0, ui): u < 0 ? 0 : ui < u ? ui : u, lane by lane
+    u = u < 0.0 ? D4{} : u, u = ui < u ? D4{ui, ui, ui, ui} : u;
+    v = v < 0.0 ? D4{} : v, v = vj < v ? D4{vj, vj, vj, vj} : v;
+    I4 i = __builtin_convertvector(u, I4), j = __builtin_convertvector(v, I4);
+    i = i > cols_ - 2 ? I4{} + (cols_ - 2) : i, j = j > rows_ - 2 ? I4{} + (rows_ - 2) : j;
+    const D4 fx = u - __builtin_convertvector(i, D4), fy = v - __builtin_convertvector(j, D4);
+    D4 h00, h10, h01, h11;
+    for (int k = 0; k < 4; ++k) {
+      const float* p = h_.data() + (static_cast<size_t>(j[k]) * cols_ + i[k]);
+      h00[k] = p[0], h10[k] = p[1], h01[k] = p[cols_], h11[k] = p[cols_ + 1];
+    }
+    const D4 r = (h00 * (1 - fx) + h10 * fx) * (1 - fy) + (h01 * (1 - fx) + h11 * fx) * fy;
+    for (int k = 0; k < 4; ++k) h[k] = r[k];
+  }
   // Asks the cache for the two rows of posts height(x, y) reads (core/prefetch.hpp): a hint that
   // changes no result, for a loop over entities scattered over the map to call a few entities
   // ahead (at 100,000 vehicles the first height() of each otherwise waits on memory; the 50 km
   // map's posts are 2.5 MB). Any x, y: NaN and infinities clamp like the map's edges.
+  // (A hint: the spacing's reciprocal, not a division; a post off by one is still a hint.)
   void prefetch(double x, double y) const {
-    const double u = x / spacing_, v = y / spacing_, ui = cols_ - 2, vj = rows_ - 2;
+    const double u = x * inv_spacing_, v = y * inv_spacing_, ui = cols_ - 2, vj = rows_ - 2;
     const long i = static_cast<long>(u > 0 ? (u < ui ? u : ui) : 0);  // NaN: 0
     const long j = static_cast<long>(v > 0 ? (v < vj ? v : vj) : 0);
     const float* p = h_.data() + (j * cols_ + i);
@@ -70,7 +94,7 @@ class Terrain {
 
  private:
   int cols_ = 0, rows_ = 0;
-  double spacing_ = 1;
+  double spacing_ = 1, inv_spacing_ = 1;  // (inv_spacing_: prefetch's only)
   std::vector<float> h_;
   geo::Geodetic origin_;
   geo::LocalFrame frame_;

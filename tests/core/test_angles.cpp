@@ -79,6 +79,29 @@ TEST(Angles, AtanRationalIsWithinTwoUlpsOfLongDouble) {
   EXPECT_LT(worst, 4.5e-16);  // the 1e-12 tolerance of atan2_deg_float is thousands of times this
 }
 
+TEST(Angles, AtanSeriesIsWithinOneUlpOfLongDouble) {
+  // atan2_deg_float2's d for slopes within kAtanSeriesMax (both lanes of the vector form too).
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> any(-detail::kAtanSeriesMax, detail::kAtanSeriesMax), e(-30.0, 0.0);
+  double worst = 0;
+  for (int i = 0; i < 1000000; ++i) {
+    const double v0 = any(rng), v1 = std::copysign(std::pow(10.0, e(rng)) * detail::kAtanSeriesMax, any(rng));
+    const detail::Double2 r = detail::atan_series(detail::Double2{v0, v1});
+    ASSERT_EQ(r[0], detail::atan_series(v0));
+    ASSERT_EQ(r[1], detail::atan_series(v1));
+    for (const double v : {v0, v1}) {
+      const long double ref = std::atan(static_cast<long double>(v));
+      const double ulp = std::nextafter(std::abs(static_cast<double>(ref)), HUGE_VAL) - std::abs(static_cast<double>(ref));
+      worst = std::max(worst, static_cast<double>(std::fabs(detail::atan_series(v) - ref) / ulp));
+    }
+  }
+  for (const double v : {detail::kAtanSeriesMax, -detail::kAtanSeriesMax}) {
+    const long double ref = std::atan(static_cast<long double>(v));
+    EXPECT_LT(static_cast<double>(std::fabs((detail::atan_series(v) - ref) / ref)), 2.3e-16) << v;
+  }
+  EXPECT_LE(worst, 1.0);
+}
+
 TEST(Angles, SinCosSmallIsWithinOneUlpOfLongDouble) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> any(-kSinCosSmallMax, kSinCosSmallMax), e(-30.0, 0.0);

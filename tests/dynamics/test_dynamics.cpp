@@ -35,6 +35,39 @@ TEST(TerrainFollowing, FeelsACrater) {
   EXPECT_LT(w.ents.pos[e].z(), 100.0 - 0.5);
 }
 
+TEST(TerrainFollowing, SteppedTogetherEachVehicleGetsItsOwnPose) {
+  // dynamics::step follows the terrain for a few vehicles at once, after their moves: each must
+  // get the pose of its own terrain following (the bits of follow_terrain on its own), whatever
+  // its place in the batch, with ships and aircraft between them. Rough ground: every post random.
+  auto w = test::flat_world();
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<float> h(static_cast<size_t>(w.terrain.cols()) * w.terrain.rows());
+  for (float& v : h) v = static_cast<float>(100.0 + 8.0 * u(rng));
+  w.terrain = world::Terrain(w.terrain.cols(), w.terrain.rows(), w.terrain.spacing_m(), std::move(h), w.terrain.origin());
+  std::vector<int> ground;
+  for (int i = 0; i < 37; ++i) {
+    const char* kind = i % 11 == 5 ? "f16" : i % 13 == 7 ? "patrol_ship" : i % 2 ? "m1a1" : "hmmwv";
+    const int e = test::add_vehicle(w, "v" + std::to_string(i), kind, 100 + 1800 * u(rng), 100 + 1800 * u(rng),
+                                    360 * u(rng), 5 + 10 * u(rng));
+    w.ents.cruise_mps[e] = w.ents.max_mps[e] = static_cast<float>(5 + 10 * u(rng));
+    if (w.kinds[w.ents.kind[e]].mobility == world::Mobility::Ground) ground.push_back(e);
+  }
+  ASSERT_GT(ground.size(), 20u);
+  std::vector<dynamics::GroundImpact> imp;
+  for (int tick = 0; tick < 3; ++tick) {
+    dynamics::step(w, 1.0 / 60, imp);
+    for (int e : ground) {
+      const double z = w.ents.pos[e].z();
+      const float pitch = w.ents.pitch_deg[e], roll = w.ents.roll_deg[e];
+      dynamics::follow_terrain(w, e);
+      EXPECT_EQ(std::bit_cast<uint64_t>(z), std::bit_cast<uint64_t>(w.ents.pos[e].z())) << w.ents.id[e];
+      EXPECT_EQ(std::bit_cast<uint32_t>(pitch), std::bit_cast<uint32_t>(w.ents.pitch_deg[e])) << w.ents.id[e];
+      EXPECT_EQ(std::bit_cast<uint32_t>(roll), std::bit_cast<uint32_t>(w.ents.roll_deg[e])) << w.ents.id[e];
+    }
+  }
+}
+
 TEST(Vehicles, SpeedNeverAboveTheLimit) {
   auto w = test::flat_world();
   const int e = test::add_vehicle(w, "t", "m1a1", 200, 1000, 90, 0);

@@ -7,8 +7,10 @@
 #include <ogr_srs_api.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -116,6 +118,28 @@ TEST(Terrain, BilinearExactOnTiltedPlane) {
   // Clamped outside the map: the nearest edge.
   EXPECT_NEAR(t.height(-50, 30), t.height(0, 30), 1e-9);
   EXPECT_NEAR(t.height(500, 500), t.height(100, 60), 1e-9);
+}
+
+TEST(Terrain, HeightsFourAtOnceGiveTheBitsOfHeight) {
+  // heights4 (a vehicle's four corners in one go) against four height() calls: random posts,
+  // points on and off the map, on posts and on the far edges.
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<float> h(13 * 9);
+  for (float& v : h) v = static_cast<float>(50.0 + 30.0 * u(rng));
+  const Terrain t(13, 9, 12.5, std::move(h), {35.98, -121.25, 0});
+  std::vector<double> xs = {0.0, -0.0, 12.5, 25.0, t.width_m(), std::nextafter(t.width_m(), 0.0), -1e9, 1e9, 37.5};
+  std::vector<double> ys = {0.0, 100.0, t.depth_m(), std::nextafter(t.depth_m(), 0.0), -3.0, 1e12, 62.5, 99.99, 0.1};
+  for (int i = 0; i < 40000; ++i) xs.push_back(-20 + 200 * u(rng)), ys.push_back(-20 + 140 * u(rng));
+  for (size_t i = 0; i + 4 <= xs.size(); i += 4) {
+    const double x[4] = {xs[i], xs[i + 1], xs[i + 2], xs[i + 3]}, y[4] = {ys[i], ys[i + 1], ys[i + 2], ys[i + 3]};
+    double got[4];
+    t.heights4(x, y, got);
+    for (int k = 0; k < 4; ++k) {
+      const double want = t.height(x[k], y[k]);
+      ASSERT_EQ(std::memcmp(&got[k], &want, sizeof want), 0) << x[k] << " " << y[k] << ": " << got[k] << " " << want;
+    }
+  }
 }
 
 TEST(Terrain, NormalOn30DegreeSlope) {
