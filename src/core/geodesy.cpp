@@ -123,21 +123,38 @@ TmRaw tm_forward_raw(double lat, double dlon) {
   return {c.a_rect * eta, c.a_rect * xi, gamma, k};
 }
 
-// Inverse TM (no offsets) from xi = y / A, eta = x / A and their series terms -> (lat, dlon) rad.
+// Inverse TM (no offsets) from xi = y / A, eta = x / A and their series terms -> (lat, dlon) rad;
+// with `grid`, also the convergence (rad) and point scale there from the inverse's own terms
+// (the derivative of its series, as Karney 2011 sec. 5 does), instead of a forward projection of
+// the result: within a few 1e-16 of forward_at's (test FrameMemo.InverseGivesTheForwardConvergence
+// AndScale). Without it the same operations as before, so the same latitude and longitude.
 void tm_inverse_terms(double xi, double eta, const FrameMemo::Terms& xt, const FrameMemo::Terms& et, double& lat,
-                      double& dlon) {
+                      double& dlon, FrameMemo::Grid* grid = nullptr) {
   const auto& c = tm_coefficients();
   double xip = xi, etap = eta;
+  double p = 1.0, q = 0.0;  // d zeta' / d zeta = p + i q (zeta = xi + i eta)
   for (int j = 1; j <= 6; ++j) {
     const double b = c.beta[j - 1];
     xip -= b * xt.a[j - 1] * et.b[j - 1];  // b sin(2j xi) cosh(2j eta)
     etap -= b * xt.b[j - 1] * et.a[j - 1];  // b cos(2j xi) sinh(2j eta)
+    p -= 2.0 * j * b * xt.b[j - 1] * et.b[j - 1];
+    q += 2.0 * j * b * xt.a[j - 1] * et.a[j - 1];
   }
   const double sxip = std::sin(xip), cxip = std::cos(xip), shetap = std::sinh(etap);
   const double r = std::hypot(shetap, cxip);
   dlon = std::atan2(shetap, cxip);
   const double taup = sxip / r;
-  lat = std::atan(tau_from_taup(taup, c.e));
+  const double tau = tau_from_taup(taup, c.e);
+  lat = std::atan(tau);
+  if (grid) {
+    // The conformal sphere's convergence atan(tan xi' tanh eta') plus the series' arg(p + i q)
+    // (the forward's atan2(q, p) is -arg(d zeta / d zeta'), the same turn); the sphere's scale
+    // sqrt(1 + (1 - e^2) tau^2) / hypot(tau', cos dlon) (that hypot is 1 / r here) over the
+    // series' |p + i q| (zeta' per zeta), times A / a.
+    const double tanh_etap = shetap / std::sqrt(1.0 + shetap * shetap);
+    grid->gamma = std::atan2(sxip * tanh_etap, cxip) + std::atan2(q, p);
+    grid->k = std::sqrt(1.0 + (1.0 - kWgs84E2) * tau * tau) * r * (c.a_rect / kWgs84A) / std::hypot(p, q);
+  }
 }
 
 // Inverse TM (no offsets): (x, y) m -> (lat, dlon) rad.
@@ -350,6 +367,11 @@ Vec3 LocalFrame::from_dis_euler(const Vec3& local_pos, const Vec3& psi_theta_phi
 
 // --- FrameMemo ---------------------------------------------------------------------------------
 Geodetic FrameMemo::to_geodetic(const Vec3& local) {
+  Grid unused;
+  return to_geodetic(local, unused);
+}
+
+Geodetic FrameMemo::to_geodetic(const Vec3& local, Grid& grid) {
   // LocalFrame::to_geodetic -> TransverseMercator::inverse -> tm_inverse_raw, step by step.
   const TransverseMercator& tm = f_.tm_;
   const double x = local.x() - tm.fe_, y = local.y() - tm.fn_ + tm.y0_;
@@ -359,9 +381,10 @@ Geodetic FrameMemo::to_geodetic(const Vec3& local) {
     const Terms& xt = xi_.get(std::bit_cast<std::uint64_t>(xi), [&](Terms& t) { xi_series(xi, t); });
     const Terms& et = eta_.get(std::bit_cast<std::uint64_t>(eta), [&](Terms& t) { eta_series(eta, t); });
     double lat = 0, dlon = 0;
-    tm_inverse_terms(xi, eta, xt, et, lat, dlon);
-    v = {rad2deg(lat), std::remainder(tm.lon0_ + rad2deg(dlon), 360.0)};
+    tm_inverse_terms(xi, eta, xt, et, lat, dlon, &v.grid);
+    v.lat_deg = rad2deg(lat), v.lon_deg = std::remainder(tm.lon0_ + rad2deg(dlon), 360.0);
   });
+  grid = ll.grid;
   return {ll.lat_deg, ll.lon_deg, local.z()};
 }
 
@@ -389,16 +412,22 @@ const FrameMemo::Grid& FrameMemo::grid(const Geodetic& g) {
 }
 
 Vec3 FrameMemo::to_dis_euler(const Geodetic& g, double heading_deg, double pitch_deg, double roll_deg) {
-  const SinCos& la = sincos_deg(lat_, g.lat_deg);
-  const SinCos& lo = sincos_deg(lon_, g.lon_deg);
-  return dis_euler(rad2deg(grid(g).gamma), ned_to_ecef(la.s, la.c, lo.s, lo.c), heading_deg, pitch_deg, roll_deg);
+  return to_dis_euler(g, grid(g), heading_deg, pitch_deg, roll_deg);
 }
 
-Mat3 FrameMemo::jacobian(const Geodetic& g) {
+Vec3 FrameMemo::to_dis_euler(const Geodetic& g, const Grid& grid, double heading_deg, double pitch_deg,
+                              double roll_deg) {
   const SinCos& la = sincos_deg(lat_, g.lat_deg);
   const SinCos& lo = sincos_deg(lon_, g.lon_deg);
-  const Grid& r = grid(g);
-  return jacobian_of(la.s, la.c, lo.s, lo.c, g.h_m, r.gamma, r.k);
+  return dis_euler(rad2deg(grid.gamma), ned_to_ecef(la.s, la.c, lo.s, lo.c), heading_deg, pitch_deg, roll_deg);
+}
+
+Mat3 FrameMemo::jacobian(const Geodetic& g) { return jacobian(g, grid(g)); }
+
+Mat3 FrameMemo::jacobian(const Geodetic& g, const Grid& grid) {
+  const SinCos& la = sincos_deg(lat_, g.lat_deg);
+  const SinCos& lo = sincos_deg(lon_, g.lon_deg);
+  return jacobian_of(la.s, la.c, lo.s, lo.c, g.h_m, grid.gamma, grid.k);
 }
 
 }  // namespace npsnet::geo

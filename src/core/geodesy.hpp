@@ -87,14 +87,23 @@ class LocalFrame {
 // scale, each keyed by the bits of its argument, so what it returns is a function of the point's
 // bits only (the same libm calls on the same arguments, the same operations after). Not shared
 // between threads; small enough for the stack.
+// The Grid forms take the convergence and scale the inverse itself gives (to_geodetic(local,
+// grid): the derivative of its series, no forward projection; within a few 1e-16 of LocalFrame's,
+// not its bits): the exact dead-reckoning test's one projection (issue 13).
 class FrameMemo {
  public:
+  struct Grid {  // the grid convergence (rad: grid north clockwise from true north) and TM point scale
+    double gamma = 0, k = 1;
+  };
   explicit FrameMemo(const LocalFrame& f) : f_(f) {}
   Geodetic to_geodetic(const Vec3& local);
+  Geodetic to_geodetic(const Vec3& local, Grid& grid);  // and the convergence and scale there
   Vec3 to_ecef(const Vec3& local) { return geodetic_to_ecef(to_geodetic(local)); }
   Vec3 geodetic_to_ecef(const Geodetic& g);
   Vec3 to_dis_euler(const Geodetic& g, double heading_deg, double pitch_deg, double roll_deg);
+  Vec3 to_dis_euler(const Geodetic& g, const Grid& grid, double heading_deg, double pitch_deg, double roll_deg);
   Mat3 jacobian(const Geodetic& g);
+  Mat3 jacobian(const Geodetic& g, const Grid& grid);
   // Series terms (of one coordinate) and whole inverses computed so far (tests).
   int terms_computed() const { return xi_.made + eta_.made; }
   int inverses_computed() const { return inv_.made; }
@@ -110,12 +119,10 @@ class FrameMemo {
   };
   struct LatLon {
     double lat_deg = 0, lon_deg = 0;
+    Grid grid;  // from the inverse (to_geodetic's Grid form)
   };
   struct SinCos {
     double s = 0, c = 0;
-  };
-  struct Grid {  // the forward TM's convergence (rad) and scale at a latitude and longitude
-    double gamma = 0, k = 1;
   };
   // The values of the last N keys; the oldest is replaced.
   template <int N, class K, class V>
@@ -139,7 +146,7 @@ class FrameMemo {
   Kept<3, std::uint64_t, Terms> xi_, eta_;
   Kept<2, Key2, LatLon> inv_;
   Kept<2, std::uint64_t, SinCos> lat_, lon_;
-  Kept<2, Key2, Grid> fwd_;
+  Kept<2, Key2, Grid> fwd_;  // the forward TM's, at a latitude and longitude
   const Grid& grid(const Geodetic& g);
 };
 

@@ -266,7 +266,8 @@ void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::
       }
       if (!moves(e)) continue;
       if (w.kinds[ents.kind[e]].mobility == Mobility::Munition) span[c] = {std::min(span[c].first, e), e + 1};
-      else if (step_vehicle(w, static_cast<int>(e), dt, memo, batch[batched]) && ++batched == kFollowBatch) follow_batch();
+      else if (step_vehicle(w, static_cast<int>(e), dt, memo, batch[batched]) && ++batched == kFollowBatch)
+        follow_batch();
     }
     follow_batch();
   };

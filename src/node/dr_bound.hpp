@@ -1,10 +1,10 @@
 // A local-frame bound on a local vehicle's dead-reckoning error, so that net out turns a vehicle
-// into ECEF / DIS terms (transverse Mercator inverse, geodesy: ~2 us) only when its Entity State
-// may be due (issue 13). Exactly equivalent, not approximate: dr_quiet() says true only when the
-// exact test, net::DrPublisher::needs_update(entity_truth(w, e), t), is certain to say None;
-// otherwise the caller does the exact test. So the vehicles sent, and the bytes sent, are those
-// of computing every vehicle's ECEF state every tick (BridgeOptions::dr_prefilter = false, the
-// reference tests/node/test_dr_bound.cpp compares with).
+// into ECEF / DIS terms (transverse Mercator inverse, geodesy: the costly part) only when its
+// Entity State may be due (issue 13). Exactly equivalent, not approximate: dr_quiet() says true
+// only when the exact test, net::DrPublisher::needs_update(entity_truth(w, e), t), is certain to
+// say None; otherwise the caller does the exact test. So the vehicles sent, and the bytes sent,
+// are those of computing every vehicle's ECEF state every tick (BridgeOptions::dr_prefilter =
+// false, the reference tests/node/test_dr_bound.cpp compares with).
 //
 // How: at every exact test of a vehicle (exact_state()) we keep an anchor: its local position p_c
 // (m), the exact position error vector E_c = truth - believed (ECEF m), the Jacobian J of the

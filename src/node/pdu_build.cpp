@@ -30,12 +30,15 @@ net::KinematicState entity_truth(const world::World& w, int e) {
 net::KinematicState entity_truth(const world::World& w, int e, geo::FrameMemo& memo, Mat3* jac) {
   net::KinematicState s;
   const Vec3 p = w.ents.pos[e];
-  const geo::Geodetic g = memo.to_geodetic(p);  // once, for the position and the orientation
+  // Once, for the position, the orientation and the Jacobian, with the convergence and scale the
+  // inverse gives (no forward projection).
+  geo::FrameMemo::Grid grid;
+  const geo::Geodetic g = memo.to_geodetic(p, grid);
   const Vec3 pe = memo.geodetic_to_ecef(g);
   s.position = ev(pe);
-  const Vec3 eu = memo.to_dis_euler(g, w.ents.heading_deg[e], w.ents.pitch_deg[e], w.ents.roll_deg[e]);
+  const Vec3 eu = memo.to_dis_euler(g, grid, w.ents.heading_deg[e], w.ents.pitch_deg[e], w.ents.roll_deg[e]);
   s.orientation = {eu.x(), eu.y(), eu.z()};
-  const Mat3 j = memo.jacobian(g);
+  const Mat3 j = memo.jacobian(g, grid);
   s.velocity = ev(j * w.ents.vel[e]);  // the derivative (was a 1 s difference)
   if (jac) *jac = j;
   return s;

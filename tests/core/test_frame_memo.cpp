@@ -4,7 +4,10 @@
 // them (one coordinate, a latitude but not a longitude, +0 against -0).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <vector>
 
@@ -82,4 +85,39 @@ TEST(FrameMemo, PointsSharingOneCoordinateOrASignedZero) {
   }
   expect_same_as_frame(f, m, run, 45, 3, -2);
   EXPECT_LT(m.inverses_computed(), static_cast<int>(run.size()));
+}
+
+TEST(FrameMemo, InverseGivesTheForwardConvergenceAndScale) {
+  // The Grid forms (the exact dead-reckoning test's): the convergence and scale from the inverse's
+  // own series against the forward projection's (LocalFrame), on the default world's 50 km frame
+  // and on one 600 km wide (300 km off its meridian), and the DIS angles and Jacobian made from
+  // them. The inverse's latitude and longitude are the plain frame's bits either way.
+  Rng rng(29);
+  for (const double size : {50000.0, 600000.0}) {
+    const LocalFrame f({35.98, -121.25, 0}, size, size);
+    double worst_gamma = 0, worst_k = 0, worst_euler = 0, worst_jac = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const Vec3 p(rng.uniform(0, size), rng.uniform(0, size), rng.uniform(0, 1500));
+      FrameMemo m(f);
+      FrameMemo::Grid grid;
+      const Geodetic g = m.to_geodetic(p, grid);
+      ASSERT_TRUE(same_bits(g, f.to_geodetic(p))) << p.transpose();
+      worst_gamma = std::max(worst_gamma, std::abs(grid.gamma - deg2rad(f.convergence_deg(g))));
+      const Mat3 j = f.jacobian(g), jg = m.jacobian(g, grid);
+      // the scale: |local +y| in ECEF is 1 / k at height 0 (a grid metre is 1 / k ellipsoid metres)
+      const Geodetic g0{g.lat_deg, g.lon_deg, 0};
+      const double k_fwd = 1.0 / f.jacobian(g0).col(1).norm(), k_inv = 1.0 / m.jacobian(g0, grid).col(1).norm();
+      worst_k = std::max(worst_k, std::abs(k_inv - k_fwd));
+      worst_jac = std::max(worst_jac, (jg - j).cwiseAbs().maxCoeff());
+      const double h = rng.uniform(0, 360), pi = rng.uniform(-30, 30), ro = rng.uniform(-30, 30);
+      const Vec3 e = f.to_dis_euler(g, h, pi, ro), eg = m.to_dis_euler(g, grid, h, pi, ro);
+      for (int c = 0; c < 3; ++c) worst_euler = std::max(worst_euler, std::abs(std::remainder(eg[c] - e[c], 2 * kPi)));
+    }
+    EXPECT_LT(worst_gamma, 2e-15) << size;  // rad
+    EXPECT_LT(worst_k, 2e-15) << size;
+    EXPECT_LT(worst_jac, 4e-15) << size;
+    EXPECT_LT(worst_euler, 2e-14) << size;  // rad: the angles themselves round to a few 1e-16
+    std::printf("frame %.0f km: worst convergence %.2e rad, scale %.2e, Jacobian %.2e, DIS angles %.2e rad\n",
+                size / 1000, worst_gamma, worst_k, worst_jac, worst_euler);
+  }
 }
