@@ -19,11 +19,12 @@
 //   went (Detector::pass_times: entity pass, kept broad phase, pair loop, and the tiers the budget
 //   governs, timed and as charged). --spatial: the same crowd
 //   stored in Z order of its cells (crowd_scene.hpp): what a spatial order of the entities gives.
+//   --budget-only: the default budget's run alone (to time or profile the budgeted step).
 // Columns (vehicles, --fixed): budget_ms, pairs (needing a narrow phase, with a verdict), lowered
 // (pairs given a tier below their exact one), contacts, truth (FCL contacts), false_pos, misses,
 // point error median / p95 (m, over the contacts both find that do not touch from the tick's
 // start), detect_ms (our detect, wall, one thread).
-// Usage: bench_budget_error [--vehicles N] [--side M] [--fixed] [--crowd N [--threads T] [--ticks K] [--spatial]] [--csv FILE]
+// Usage: bench_budget_error [--vehicles N] [--side M] [--fixed] [--crowd N [--threads T] [--ticks K] [--spatial] [--budget-only]] [--csv FILE]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -233,7 +234,7 @@ int accuracy(int n, double side, bool fixed, std::string csv) {
 }
 
 // The full continuous step in the crowd, with the default budget and without one.
-int crowd(int n, int threads, int ticks, bool spatial, std::string csv) {
+int crowd(int n, int threads, int ticks, bool spatial, bool budget_only, std::string csv) {
   auto sc = world::load_scenario(std::string(npsnet::dirs::source()) + "/scenarios/default.toml");
   world::World w = world::build_world(sc);
   w.ents = world::Entities{};
@@ -251,6 +252,7 @@ int crowd(int n, int threads, int ticks, bool spatial, std::string csv) {
               "|---|---|---|---|---|---|---|---|---|\n");
   core::Jobs jobs(threads);
   for (double budget : {world::kDefaultCollisionBudgetMs, 1e9}) {
+    if (budget_only && budget != world::kDefaultCollisionBudgetMs) break;
     collision::Detector det(collision::options_from("continuous", "auto", dt));
     det.set_budget_ms(budget);
     if (threads > 1) det.set_jobs(&jobs);
@@ -287,7 +289,7 @@ int crowd(int n, int threads, int ticks, bool spatial, std::string csv) {
 
 int main(int argc, char** argv) {
   int n = 3000, crowd_n = 0, threads = 1, ticks = 4;
-  bool spatial = false;
+  bool spatial = false, budget_only = false;
   double side = 600;
   bool fixed = false;
   std::string csv;
@@ -299,13 +301,14 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "--crowd: threads of the detector's pool (the node's --threads)")->capture_default_str()->check(CLI::Range(1, core::Jobs::kMaxThreads));
   app.add_option("--ticks", ticks, "--crowd: ticks per budget (tick 0: every contact new)")->capture_default_str()->check(CLI::Range(1, 1000));
   app.add_flag("--spatial", spatial, "--crowd: the vehicles stored in Z order of their cells (neighbours near in memory)");
+  app.add_flag("--budget-only", budget_only, "--crowd: only the default budget's run (not the unbudgeted one)");
   app.add_option("--csv", csv, "where the CSV goes (default: bench/results/...)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
-  if (crowd_n > 0) return crowd(crowd_n, threads, ticks, spatial, csv);
+  if (crowd_n > 0) return crowd(crowd_n, threads, ticks, spatial, budget_only, csv);
   return accuracy(n, side, fixed, csv);
 }
 #endif

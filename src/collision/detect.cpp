@@ -57,12 +57,16 @@ void Detector::index_episodes(size_t n) {
     lo_start_.clear();
     return;
   }
-  lo_start_.resize(n + 1);  // (same size as last tick: no fill; the loop writes every entry)
-  size_t k = 0;  // moving pairs' keys first (no top bit), by lower index, then higher
-  for (size_t e = 0; e <= n; ++e) {
-    while (k < previous_.size() && !(previous_[k] >> 63) && ((previous_[k] >> 31) & 0xffffffffu) < e) ++k;
-    lo_start_[e] = static_cast<uint32_t>(k);
+  // Moving pairs' keys first (no top bit), sorted by lower index, then higher: lo_start_[e] is
+  // the number of them whose lower index is below e (counted, then summed).
+  const size_t moving = static_cast<size_t>(
+      std::lower_bound(previous_.begin(), previous_.end(), uint64_t{1} << 63) - previous_.begin());
+  lo_start_.assign(n + 1, 0);
+  for (size_t k = 0; k < moving; ++k) {
+    const uint64_t lo = (previous_[k] >> 31) & 0xffffffffu;
+    if (lo < n) ++lo_start_[lo + 1];
   }
+  for (size_t e = 1; e <= n; ++e) lo_start_[e] += lo_start_[e - 1];
 }
 
 bool Detector::was_touching(int a, int b) const {
