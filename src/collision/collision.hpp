@@ -213,8 +213,9 @@ class Detector {
     Tier exact = Tier::Sphere, tier = Tier::Sphere;
     double t_in = 0, t_out = 1;  // the bound spheres' first touch and exit (fractions of the tick)
     uint32_t ia = 0, ib = 0;     // sweep slots of a and b (ib: unused for a fixed object)
+    uint32_t rank_a = 0, rank_b = 0;  // their id ranks (rank_b: in fixed_rank_ when b is fixed)
     double closing = 0;          // |va - vb| (m/s)
-    bool required = false;
+    bool required = false;       // set when made: a driven or snapshotted body; allocate_tiers adds the seen
   };
   // One thread's share of a detection: merged into candidates_, touching_, stats_ in range order.
   struct Lane {
@@ -230,18 +231,18 @@ class Detector {
   void fixed_contacts(const world::World& w, size_t i, Lane& L);
   void pair_contact(const world::World& w, size_t p, Lane& L);
   // A hint (core/prefetch.hpp): the cache lines pair_contact(p) reads, in three stages, each
-  // reading what the one before asked for: 0 the pair's entity indices; 1 the two bodies'
-  // sweeps, owners, kinds, ranks and velocities (a pair's closing speed when it is left to
-  // allocate_tiers), and lo_start_; 2 the episode keys lo_start_ points to.
+  // reading what the one before asked for: 0 the two bodies' Swept and tags; 1 their velocities
+  // (a pair's closing speed when it is left to allocate_tiers) and lo_start_ of the lower entity
+  // index; 2 the episode keys lo_start_ points to.
   void prefetch_pair(const world::World& w, size_t p, int stage) const;
   void allocate_tiers(const world::World& w);  // scene_tiers.cpp
   void decide_pending(const world::World& w, size_t p, Lane& L);
-  // A moving pair, first its sweep: the tier it needs (tier; the sphere for a munition) and the
-  // sweep of its spheres, or of its bounds when a tier above the sphere may be asked (counted).
+  // A moving pair, first its sweep at the tier it needs (pair_tier: the sphere for a munition):
+  // of its spheres, or of its bounds when a tier above the sphere may be asked (counted).
   // hit_only: sphere_sweep's hit_only (a running episode needs only whether its bounds meet).
-  Trace pair_sweep(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa, double rba,
-                   const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, Tier& tier, Lane& L,
-                   bool hit_only = false) const;
+  Tier pair_tier(const world::World& w, int a, int b) const;
+  static Trace pair_sweep(Tier tier, const Vec3& c0a, const Vec3& c1a, double rsa, double rba, const Vec3& c0b,
+                          const Vec3& c1b, double rsb, double rbb, Lane& L, bool hit_only = false);
   // Then, after the sweep h hit, for a pair not in a running episode (one that is goes on while
   // its bounds meet, and needs no more): true with the contact k by that tier. `defer`: the
   // narrow phase is left for allocate_tiers (auto tier): false, with *defer filled.
@@ -269,8 +270,24 @@ class Detector {
   DetectStats stats_;
   PassTimes times_;
   // continuous
-  std::vector<Vec3> c0_, c1_;           // sphere centres at the start and end of the tick
-  std::vector<float> r_sphere_, r_bound_;  // thesis sphere radius; bound of the model (true radius)
+  // Each active entity's sweep, by its slot i (order_[i]), in one cache line: all that a moving
+  // pair reads of each of its bodies but its tags (the pairs come in no order, so each body
+  // costs the lines it spans; it was 10 lines in 8 arrays).
+  struct alignas(64) Swept {
+    Vec3 c0, c1;              // sphere centre at the start and end of the tick
+    float r_sphere, r_bound;  // thesis sphere radius; bound of the model (true radius)
+    uint32_t e;               // its entity index
+    int32_t owner;            // world.ents.owner[e] (a munition's shooter, else -1)
+  };
+  static_assert(sizeof(Swept) == 64);
+  struct SweptTags {
+    uint32_t rank;  // rank_.ranks()[e]
+    Tier top;       // the tier it may be asked for: the forced tier, else its kind's top
+    bool munition;
+    bool required;  // driven by a player or snapshotted: its pairs get their exact tier
+  };
+  std::vector<Swept> swept_;
+  std::vector<SweptTags> tags_;
   std::vector<Box> boxes_;              // swept boxes
   std::vector<std::pair<uint32_t, uint32_t>> pairs_;
   PairCache moving_;  // the moving bodies' broad phase, kept across ticks

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "collision/collision.hpp"
+#include "core/prefetch.hpp"
 #include "core/stopwatch.hpp"
 #include "world/pose.hpp"
 
@@ -72,8 +73,8 @@ bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
     rb[s] = top == Tier::Sphere ? rs[s] : std::max(rs[s], sh.bound_radius * 1.0001 + 1e-3);
   }
   Lane& L = lane(0);
-  Tier tier;
-  const Trace h = pair_sweep(w, a, b, c0[0], c1[0], rs[0], rb[0], c0[1], c1[1], rs[1], rb[1], tier, L);
+  const Tier tier = pair_tier(w, a, b);
+  const Trace h = pair_sweep(tier, c0[0], c1[0], rs[0], rb[0], c0[1], c1[1], rs[1], rb[1], L);
   const bool hit = h.hit && pair_hit(w, a, b, h, tier, k, L);
   merge_lanes(1);
   return hit;
@@ -127,9 +128,9 @@ constexpr size_t kEntityGrain = 128, kPairGrain = 256, kPendingGrain = 4;
 constexpr int kEntityChunksPerThread = 4, kPairChunksPerThread = 4, kPendingChunksPerThread = 8;
 // The pairs lie in no spatial order: what a pair reads of its two bodies is asked of the cache
 // kPairAhead pairs early (prefetch_pair), so their misses overlap instead of stalling in turn:
-// its entity indices twice as far ahead, the episode keys half as far (each stage reads what
-// the one before asked for).
-constexpr size_t kPairAhead = 8;
+// its bodies' Swept lines and tags twice as far ahead, their velocities and lo_start_
+// kPairAhead, the episode keys half as far (each stage reads what the one before asked for).
+constexpr size_t kPairAhead = 8, kPendingAhead = 4;
 }  // namespace
 
 void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
@@ -138,6 +139,7 @@ void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
   const int e = static_cast<int>(order_[i]);
   const world::Kind& ke = w.kinds[ents.kind[e]];
   const Box& b = boxes_[i];
+  const Swept& sw = swept_[i];
   auto test = [&](int o, float) {
     const float x = fixed_x_[o], y = fixed_y_[o], r = fixed_r_[o];
     if (x + r < b.lo[0] || x - r > b.hi[0] || y + r < b.lo[1] || y - r > b.hi[1]) return;
@@ -146,8 +148,8 @@ void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
     const Tier tier = opt_.tier != Tier::Auto ? opt_.tier : std::min(top_tier(ke), top_tier(ko));
     const Vec3 fc = world::fixed_centre(w, o);  // live: craters re-seat objects
     const double rs = world::fixed_radius(w, o);
-    const bool sphere = tier == Tier::Sphere || w.is_munition(e);
-    const Trace h = sphere_sweep(c0_[i], c1_[i], sphere ? r_sphere_[i] : r_bound_[i], fc, fc,
+    const bool sphere = tier == Tier::Sphere || tags_[i].munition;
+    const Trace h = sphere_sweep(sw.c0, sw.c1, sphere ? sw.r_sphere : sw.r_bound, fc, fc,
                                  sphere ? rs : std::max<double>(rs, r));
     ++L.stats.sweep_pairs;
     if (!h.hit) {
@@ -173,6 +175,7 @@ void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
       Pending& q = L.pending.emplace_back();
       q.k = k, q.exact = tier, q.t_in = h.fraction, q.t_out = h.exit_fraction;
       q.ia = static_cast<uint32_t>(i), q.ib = static_cast<uint32_t>(o), q.closing = ents.vel[e].norm();
+      q.rank_a = tags_[i].rank, q.rank_b = fixed_rank_.ranks()[o], q.required = tags_[i].required;
       return;
     } else if (!narrow(w, e, static_cast<int>(o), true, tier, h.fraction, h.exit_fraction, k, L)) {
       return;
@@ -219,7 +222,7 @@ void Detector::detect_continuous(const world::World& w) {
     order_.push_back(static_cast<uint32_t>(e));
   }
   const size_t m = order_.size();
-  c0_.resize(m), c1_.resize(m), r_sphere_.resize(m), r_bound_.resize(m), boxes_.resize(m);
+  swept_.resize(m), tags_.resize(m), boxes_.resize(m);
 
   // Fixed objects: the world's grid (world/fixed_grid.hpp) lists each by its reach; each is
   // tested here by its sphere (or its models' bound, when a tier above the sphere may be asked),
@@ -256,18 +259,23 @@ void Detector::detect_continuous(const world::World& w) {
     into = core::ms_since(t);
     t = std::chrono::steady_clock::now();
   };
+  const auto& ranks = rank_.ranks();
   in_lanes(m, kEntityGrain, kEntityChunksPerThread, [&](int c, size_t i0, size_t i1) __attribute__((flatten)) {
     for (size_t i = i0; i < i1; ++i) {
       const int e = static_cast<int>(order_[i]);
       check_finite(ents, e);
-      c1_[i] = centre_end(w, e);
-      c0_[i] = c1_[i] - ents.vel[e] * dt;
-      if (!finite(c0_[i]))
+      Swept& sw = swept_[i];
+      sw.c1 = centre_end(w, e);
+      sw.c0 = sw.c1 - ents.vel[e] * dt;
+      if (!finite(sw.c0))
         throw std::invalid_argument("collision: entity '" + ents.id[e] + "': velocity * dt overflows");
-      r_sphere_[i] = static_cast<float>(world::entity_radius(w, e));
-      const Tier top = opt_.tier != Tier::Auto ? opt_.tier : top_tier(w.kinds[ents.kind[e]]);
-      const Shape& s = shapes_[w.kinds[ents.kind[e]].models[ents.state[e]]];
-      r_bound_[i] = top == Tier::Sphere ? r_sphere_[i] : std::max(r_sphere_[i], static_cast<float>(s.bound_radius * 1.0001 + 1e-3));
+      sw.r_sphere = static_cast<float>(world::entity_radius(w, e));
+      sw.e = static_cast<uint32_t>(e), sw.owner = ents.owner[e];
+      const world::Kind& kd = w.kinds[ents.kind[e]];
+      const Tier top = opt_.tier != Tier::Auto ? opt_.tier : top_tier(kd);
+      tags_[i] = SweptTags{ranks[e], top, kd.mobility == world::Mobility::Munition, ents.driven[e] || ents.snapshots[e]};
+      const Shape& s = shapes_[kd.models[ents.state[e]]];
+      sw.r_bound = top == Tier::Sphere ? sw.r_sphere : std::max(sw.r_sphere, static_cast<float>(s.bound_radius * 1.0001 + 1e-3));
       // Turning: the start orientation is the last tick's end (same kind, active then).
       const Hpr now{ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]};
       start_hpr_[e] = prev_ok_[e] && prev_kind_[e] == ents.kind[e] ? prev_hpr_[e] : now;
@@ -280,9 +288,9 @@ void Detector::detect_continuous(const world::World& w) {
           const double a = double(now[k]) - start_hpr_[e][k];  // within a half turn remainder gives a itself
           turn += std::abs(std::abs(a) < 180 ? a : std::remainder(a, 360.0));
         }
-        r_bound_[i] += static_cast<float>(turn * kPi / 180 * s.sphere_centre.norm());
+        sw.r_bound += static_cast<float>(turn * kPi / 180 * s.sphere_centre.norm());
       }
-      boxes_[i] = swept_box(c0_[i], c1_[i], r_bound_[i]);
+      boxes_[i] = swept_box(sw.c0, sw.c1, sw.r_bound);
       fixed_contacts(w, i, lanes_[c]);
     }
   });
@@ -308,7 +316,14 @@ void Detector::detect_continuous(const world::World& w) {
   if (!pending_.empty()) {
     allocate_tiers(w);
     in_lanes(pending_.size(), kPendingGrain, kPendingChunksPerThread, [&](int c, size_t p0, size_t p1) {
-      for (size_t p = p0; p < p1; ++p) decide_pending(w, p, lanes_[c]);
+      for (size_t p = p0; p < p1; ++p) {
+        if (p + kPendingAhead < p1) {  // its bodies' sweeps, last read in the pair loop long before
+          const Pending& q = pending_[p + kPendingAhead];
+          core::prefetch(&swept_[q.ia]);
+          if (!q.k.b_fixed) core::prefetch(&swept_[q.ib]);
+        }
+        decide_pending(w, p, lanes_[c]);
+      }
     });
     pending_.clear();
   }

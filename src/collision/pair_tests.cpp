@@ -94,13 +94,15 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
   return true;
 }
 
-Trace Detector::pair_sweep(const world::World& w, int a, int b, const Vec3& c0a, const Vec3& c1a, double rsa, double rba,
-                           const Vec3& c0b, const Vec3& c1b, double rsb, double rbb, Tier& tier, Lane& L,
-                           bool hit_only) const {
+Tier Detector::pair_tier(const world::World& w, int a, int b) const {
   const auto& ents = w.ents;
-  tier = w.is_munition(a) || w.is_munition(b) ? Tier::Sphere
+  return w.is_munition(a) || w.is_munition(b) ? Tier::Sphere
          : opt_.tier != Tier::Auto            ? opt_.tier
                                                : std::min(top_tier(w.kinds[ents.kind[a]]), top_tier(w.kinds[ents.kind[b]]));
+}
+
+Trace Detector::pair_sweep(Tier tier, const Vec3& c0a, const Vec3& c1a, double rsa, double rba, const Vec3& c0b,
+                           const Vec3& c1b, double rsb, double rbb, Lane& L, bool hit_only) {
   ++L.stats.sweep_pairs;
   const Trace h = sphere_sweep(c0a, c1a, swept_radius(tier, rsa, rba), c0b, c1b, swept_radius(tier, rsb, rbb), hit_only);
   if (!h.hit) ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
@@ -130,40 +132,37 @@ bool Detector::pair_hit(const world::World& w, int a, int b, const Trace& h, Tie
 void Detector::prefetch_pair(const world::World& w, size_t p, int stage) const {
   const auto [i, j] = pairs_[p];
   if (stage == 0) {
-    core::prefetch(&order_[i]), core::prefetch(&order_[j]);
+    core::prefetch(&swept_[i]), core::prefetch(&swept_[j]), core::prefetch(&tags_[i]), core::prefetch(&tags_[j]);
     return;
   }
-  const uint32_t lo = std::min(order_[i], order_[j]);
-  if (stage == 2) {
-    if (!lo_start_.empty() && lo_start_[lo] < previous_.size()) core::prefetch(&previous_[lo_start_[lo]]);
-    return;
+  const uint32_t ea = swept_[i].e, eb = swept_[j].e, lo = std::min(ea, eb);
+  if (stage == 1) {
+    core::prefetch_object(&w.ents.vel[ea]), core::prefetch_object(&w.ents.vel[eb]);  // a pair left to allocate_tiers: its closing speed
+    if (!lo_start_.empty()) core::prefetch(&lo_start_[lo]);
+  } else if (!lo_start_.empty() && lo_start_[lo] < previous_.size()) {
+    core::prefetch(&previous_[lo_start_[lo]]);
   }
-  for (const uint32_t s : {i, j}) {
-    core::prefetch_object(&c0_[s]), core::prefetch_object(&c1_[s]);  // a Vec3 may span two lines
-    core::prefetch(&r_sphere_[s]), core::prefetch(&r_bound_[s]);
-    const uint32_t e = order_[s];
-    core::prefetch(&w.ents.owner[e]), core::prefetch(&w.ents.kind[e]), core::prefetch(&rank_.ranks()[e]);
-    core::prefetch_object(&w.ents.vel[e]);  // a pair left to allocate_tiers: its closing speed
-  }
-  if (!lo_start_.empty()) core::prefetch(&lo_start_[lo]);
 }
 
 void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
-  const auto& ents = w.ents;
   const auto [i, j] = pairs_[p];
-  int a = static_cast<int>(order_[i]), b = static_cast<int>(order_[j]);
+  const Swept* sa = &swept_[i];
+  const Swept* sb = &swept_[j];
+  int a = static_cast<int>(sa->e), b = static_cast<int>(sb->e);
+  if (sa->owner == b || sb->owner == a) return;  // a round never meets its shooter
+  const SweptTags* ta = &tags_[i];
+  const SweptTags* tb = &tags_[j];
+  if (ta->munition && tb->munition) return;
   size_t ia = i, ib = j;
-  if (ents.owner[a] == b || ents.owner[b] == a) return;  // a round never meets its shooter
-  if (w.is_munition(a) && w.is_munition(b)) return;
   // Canonical order by id rank, so that the answer does not depend on where entities are stored.
-  if (rank_.ranks()[b] < rank_.ranks()[a]) std::swap(a, b), std::swap(ia, ib);
+  if (tb->rank < ta->rank) std::swap(a, b), std::swap(ia, ib), std::swap(sa, sb), std::swap(ta, tb);
   // A running episode goes on while the bounds meet (its key) but reports nothing: detect() would
   // drop its contact, so none is made and its sweep asks only whether they meet (in a crowd of
   // overlapping vehicles, most of the pairs).
   const bool continuing = was_touching(a, b);
-  Tier tier;
-  const Trace h = pair_sweep(w, a, b, c0_[ia], c1_[ia], r_sphere_[ia], r_bound_[ia], c0_[ib], c1_[ib], r_sphere_[ib],
-                             r_bound_[ib], tier, L, continuing);
+  const Tier tier = ta->munition || tb->munition ? Tier::Sphere : std::min(ta->top, tb->top);  // pair_tier
+  const Trace h = pair_sweep(tier, sa->c0, sa->c1, sa->r_sphere, sa->r_bound, sb->c0, sb->c1, sb->r_sphere,
+                             sb->r_bound, L, continuing);
   if (!h.hit) return;
   if (continuing) {
     ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];  // decided by its bounds: the sphere tier
@@ -176,6 +175,7 @@ void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
   if (!pair_hit(w, a, b, h, tier, k, L, opt_.tier == Tier::Auto ? &q : nullptr)) {
     if (q.k.a >= 0) {  // deferred to allocate_tiers
       q.ia = static_cast<uint32_t>(ia), q.ib = static_cast<uint32_t>(ib);
+      q.rank_a = ta->rank, q.rank_b = tb->rank, q.required = ta->required || tb->required;
       L.pending.push_back(q);
     }
     return;
@@ -189,10 +189,11 @@ void Detector::decide_pending(const world::World& w, size_t p, Lane& L) {
   Contact k = q.k;
   if (q.tier == Tier::Sphere) {  // the thesis spheres swept: what the sphere tier finds
     const int b = k.b;
-    const Vec3 cb0 = k.b_fixed ? world::fixed_centre(w, b) : c0_[q.ib];
-    const Vec3 cb1 = k.b_fixed ? cb0 : c1_[q.ib];
-    const double rb = k.b_fixed ? world::fixed_radius(w, b) : r_sphere_[q.ib];
-    const Trace h = sphere_sweep(c0_[q.ia], c1_[q.ia], r_sphere_[q.ia], cb0, cb1, rb);
+    const Swept& sa = swept_[q.ia];
+    const Vec3 cb0 = k.b_fixed ? world::fixed_centre(w, b) : swept_[q.ib].c0;
+    const Vec3 cb1 = k.b_fixed ? cb0 : swept_[q.ib].c1;
+    const double rb = k.b_fixed ? world::fixed_radius(w, b) : swept_[q.ib].r_sphere;
+    const Trace h = sphere_sweep(sa.c0, sa.c1, sa.r_sphere, cb0, cb1, rb);
     ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
     if (!h.hit) return;
     static_cast<Trace&>(k) = h;

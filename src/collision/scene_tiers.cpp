@@ -22,28 +22,26 @@ ViewVolume ViewVolume::box(const Vec3& lo, const Vec3& hi) {
 }
 
 void Detector::allocate_tiers(const world::World& w) {
-  const auto& ents = w.ents;
-  // Required: a driven or snapshotted vehicle, or a body seen by a viewer.
+  // Required: a driven or snapshotted vehicle (set when the pair was made), or a body seen by a viewer.
   for (Pending& q : pending_) {
-    const int a = q.k.a, b = q.k.b;
-    bool req = ents.driven[a] || ents.snapshots[a] || (!q.k.b_fixed && (ents.driven[b] || ents.snapshots[b]));
+    const int b = q.k.b;
+    bool req = q.required;
     for (size_t v = 0; v < views_.size() && !req; ++v) {
       const ViewVolume& vv = views_[v];
-      req = vv.sphere_inside(c1_[q.ia], r_bound_[q.ia]) ||
-            (q.k.b_fixed ? vv.sphere_inside(world::fixed_centre(w, b), fixed_r_[b]) : vv.sphere_inside(c1_[q.ib], r_bound_[q.ib]));
+      req = vv.sphere_inside(swept_[q.ia].c1, swept_[q.ia].r_bound) ||
+            (q.k.b_fixed ? vv.sphere_inside(world::fixed_centre(w, b), fixed_r_[b])
+                         : vv.sphere_inside(swept_[q.ib].c1, swept_[q.ib].r_bound));
     }
     q.required = req;
   }
   // Most important first: required, then the faster closing, then the id order. Sorted by
   // copies of those keys side by side (a comparison that read two Pendings, each on lines of
   // its own, missed the cache; 10,000 pairs a tick in the 100,000-vehicle crowd).
-  const auto& rank = rank_.ranks();
-  const auto& fixed_rank = fixed_rank_.ranks();
   pending_order_.resize(pending_.size());
   size_t required = 0;
   for (uint32_t i = 0; i < pending_order_.size(); ++i) {
     const Pending& q = pending_[i];
-    pending_order_[i] = {q.closing, rank[q.k.a], q.k.b_fixed ? fixed_rank[q.k.b] : rank[q.k.b], i, q.required, q.k.b_fixed};
+    pending_order_[i] = {q.closing, q.rank_a, q.rank_b, i, q.required, q.k.b_fixed};
     required += q.required;
   }
   auto more_important = [](const Importance& x, const Importance& y) {
