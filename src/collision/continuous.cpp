@@ -131,6 +131,9 @@ constexpr int kEntityChunksPerThread = 4, kPairChunksPerThread = 4, kPendingChun
 // its bodies' Swept lines and tags twice as far ahead, their velocities and lo_start_
 // kPairAhead, the episode keys half as far (each stage reads what the one before asked for).
 constexpr size_t kPairAhead = 8, kPendingAhead = 4;
+// The entity pass writes each entity's Swept, tags and box, which the pair loop and the broad
+// phase read last tick on whichever thread had the pair: asked for kEntityAhead entities early.
+constexpr size_t kEntityAhead = 8;
 }  // namespace
 
 void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
@@ -262,6 +265,10 @@ void Detector::detect_continuous(const world::World& w) {
   const auto& ranks = rank_.ranks();
   in_lanes(m, kEntityGrain, kEntityChunksPerThread, [&](int c, size_t i0, size_t i1) __attribute__((flatten)) {
     for (size_t i = i0; i < i1; ++i) {
+      if (i + kEntityAhead < i1) {  // lines the other thread read last tick, to be written
+        core::prefetch_write(&swept_[i + kEntityAhead]), core::prefetch_write(&boxes_[i + kEntityAhead]);
+        core::prefetch_write(&tags_[i + kEntityAhead]);
+      }
       const int e = static_cast<int>(order_[i]);
       check_finite(ents, e);
       Swept& sw = swept_[i];
