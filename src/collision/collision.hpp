@@ -209,7 +209,8 @@ class Detector {
   void rank_ids(const world::World& w);
   // A pair that needs a narrow phase (auto tier): decided after allocate_tiers gave it a tier.
   struct Pending {
-    Contact k;              // a, b, b_fixed, dt_s
+    int a = -1, b = -1;     // the Contact's (b a fixed object when b_fixed); dt_s = opt_.dt_s
+    bool b_fixed = false;
     Tier exact = Tier::Sphere, tier = Tier::Sphere;
     double t_in = 0, t_out = 1;  // the bound spheres' first touch and exit (fractions of the tick)
     uint32_t ia = 0, ib = 0;     // sweep slots of a and b (ib: unused for a fixed object)
@@ -258,14 +259,16 @@ class Detector {
   std::vector<uint32_t> order_;         // active entities sorted by x (L1 sweep)
   std::vector<uint64_t> touching_, previous_;  // pair keys in contact this / last tick
   std::vector<uint64_t> sort_scratch_;         // core::radix_sort's
-  // Where each entity's episodes with moving partners lie in previous_ (sorted): the keys whose
-  // lower index is e are previous_[lo_start_[e] .. lo_start_[e + 1]). Made each tick when
-  // previous_ holds kEpisodeIndexMin keys or more (else empty: a binary search is as quick),
-  // so that a pair's look-up reads two lines, which prefetch_pair asks for ahead.
+  // Where each entity's episodes with moving partners lie in previous_: the keys whose lower
+  // index is e are previous_[lo_start_[e] .. lo_start_[e + 1]) (in no order), the fixed
+  // contacts' keys after the last bucket (sorted). Made each tick when previous_ holds
+  // kEpisodeIndexMin keys or more (else empty and previous_ sorted: a binary search is as
+  // quick), so that a pair's look-up reads two lines, which prefetch_pair asks for ahead.
   static constexpr size_t kEpisodeIndexMin = 4096;
   std::vector<uint32_t> lo_start_;
   void index_episodes(size_t n);          // n: entity slots
   bool was_touching(int a, int b) const;  // moving pair (a, b) in contact last tick
+  bool was_in_contact(uint64_t key) const;  // the pair of this contact_key, moving or fixed
   std::vector<Contact> candidates_;
   DetectStats stats_;
   PassTimes times_;

@@ -161,7 +161,7 @@ void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
     }
     ++L.stats.sweep_hits;
     const uint64_t key = contact_key(e, static_cast<int>(o), true);
-    const bool continuing = std::binary_search(previous_.begin(), previous_.end(), key);
+    const bool continuing = was_in_contact(key);
     if (continuing) {  // the episode goes on; detect() would drop its contact (moving pairs: the same)
       ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
       L.touching.push_back(key);
@@ -176,7 +176,7 @@ void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
       k.tier = tier_name(Tier::Sphere);
     } else if (opt_.tier == Tier::Auto) {  // allocate_tiers gives it its tier first
       Pending& q = L.pending.emplace_back();
-      q.k = k, q.exact = tier, q.t_in = h.fraction, q.t_out = h.exit_fraction;
+      q.a = e, q.b = static_cast<int>(o), q.b_fixed = true, q.exact = tier, q.t_in = h.fraction, q.t_out = h.exit_fraction;
       q.ia = static_cast<uint32_t>(i), q.ib = static_cast<uint32_t>(o), q.closing = ents.vel[e].norm();
       q.rank_a = tags_[i].rank, q.rank_b = fixed_rank_.ranks()[o], q.required = tags_[i].required;
       return;
@@ -327,7 +327,7 @@ void Detector::detect_continuous(const world::World& w) {
         if (p + kPendingAhead < p1) {  // its bodies' sweeps, last read in the pair loop long before
           const Pending& q = pending_[p + kPendingAhead];
           core::prefetch(&swept_[q.ia]);
-          if (!q.k.b_fixed) core::prefetch(&swept_[q.ib]);
+          if (!q.b_fixed) core::prefetch(&swept_[q.ib]);
         }
         decide_pending(w, p, lanes_[c]);
       }

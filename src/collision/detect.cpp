@@ -31,18 +31,20 @@ void Detector::detect(const world::World& w, std::vector<Contact>& out) {
   times_ = PassTimes{};
   touching_.clear();
   candidates_.clear();
-  core::radix_sort(previous_, sort_scratch_);  // 59,000 keys in the 100,000-vehicle crowd
-  if (opt_.method == Method::Thesis) {
-    detect_thesis(w);
+  // Last tick's keys, sorted, or past kEpisodeIndexMin of them (59,000 in the 100,000-vehicle
+  // crowd) bucketed by lower index (index_episodes); the thesis's few pairs need no index.
+  if (opt_.method == Method::Thesis || previous_.size() < kEpisodeIndexMin) {
+    core::radix_sort(previous_, sort_scratch_);
+    lo_start_.clear();
   } else {
-    index_episodes(w.ents.size());  // (the thesis's few pairs need no index)
-    detect_continuous(w);
+    index_episodes(w.ents.size());
   }
+  if (opt_.method == Method::Thesis) detect_thesis(w);
+  else detect_continuous(w);
 
   // One event per contact episode: report only pairs not touching last tick.
   for (const Contact& k : candidates_) {
-    const uint64_t key = pair_key(k.a, k.b, k.b_fixed);
-    if (std::binary_search(previous_.begin(), previous_.end(), key)) continue;
+    if (was_in_contact(pair_key(k.a, k.b, k.b_fixed))) continue;
     out.push_back(k);
     ++stats_.contacts;
   }
@@ -53,20 +55,27 @@ void Detector::detect(const world::World& w, std::vector<Contact>& out) {
 uint64_t contact_key(int a, int b, bool fixed) { return pair_key(a, b, fixed); }
 
 void Detector::index_episodes(size_t n) {
-  if (previous_.size() < kEpisodeIndexMin) {
-    lo_start_.clear();
-    return;
+  // A counting sort of the moving pairs' keys by lower index (one pass to count, one to place:
+  // each bucket keeps last tick's order), then the fixed contacts' keys (top bit), sorted.
+  lo_start_.assign(n + 2, 0);  // bucket n: lower indices past this tick's entities (none asked)
+  size_t fixed = 0;
+  for (const uint64_t key : previous_) {
+    if (key >> 63) ++fixed;
+    else ++lo_start_[std::min<uint64_t>((key >> 31) & 0xffffffffu, n) + 1];
   }
-  // Moving pairs' keys first (no top bit), sorted by lower index, then higher: lo_start_[e] is
-  // the number of them whose lower index is below e (counted, then summed).
-  const size_t moving = static_cast<size_t>(
-      std::lower_bound(previous_.begin(), previous_.end(), uint64_t{1} << 63) - previous_.begin());
-  lo_start_.assign(n + 1, 0);
-  for (size_t k = 0; k < moving; ++k) {
-    const uint64_t lo = (previous_[k] >> 31) & 0xffffffffu;
-    if (lo < n) ++lo_start_[lo + 1];
+  for (size_t e = 1; e <= n + 1; ++e) lo_start_[e] += lo_start_[e - 1];  // where each bucket starts
+  const size_t moving = previous_.size() - fixed;
+  sort_scratch_.resize(previous_.size());
+  size_t f = moving;
+  for (const uint64_t key : previous_) {
+    if (key >> 63) sort_scratch_[f++] = key;
+    else sort_scratch_[lo_start_[std::min<uint64_t>((key >> 31) & 0xffffffffu, n)]++] = key;
   }
-  for (size_t e = 1; e <= n; ++e) lo_start_[e] += lo_start_[e - 1];
+  // (placing moved each start to its bucket's end, the next one's start)
+  std::copy_backward(lo_start_.begin(), lo_start_.begin() + static_cast<std::ptrdiff_t>(n) + 1, lo_start_.begin() + static_cast<std::ptrdiff_t>(n) + 2);
+  lo_start_[0] = 0;
+  std::sort(sort_scratch_.begin() + static_cast<std::ptrdiff_t>(moving), sort_scratch_.end());
+  previous_.swap(sort_scratch_);
 }
 
 bool Detector::was_touching(int a, int b) const {
@@ -74,8 +83,15 @@ bool Detector::was_touching(int a, int b) const {
   if (lo_start_.empty()) return std::binary_search(previous_.begin(), previous_.end(), key);
   const size_t lo = static_cast<size_t>(std::min(a, b));
   for (uint32_t k = lo_start_[lo], end = lo_start_[lo + 1]; k < end; ++k)
-    if (previous_[k] >= key) return previous_[k] == key;
+    if (previous_[k] == key) return true;
   return false;
+}
+
+bool Detector::was_in_contact(uint64_t key) const {
+  if (lo_start_.empty()) return std::binary_search(previous_.begin(), previous_.end(), key);
+  if (!(key >> 63)) return was_touching(static_cast<int>((key >> 31) & 0xffffffffu), static_cast<int>(key & 0x7fffffffu));
+  const size_t lo = lo_start_.size() - 1;  // (the fixed keys follow the last bucket)
+  return std::binary_search(previous_.begin() + lo_start_[lo], previous_.end(), key);
 }
 
 void Detector::detect_thesis(const world::World& w) {

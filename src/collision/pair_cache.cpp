@@ -178,7 +178,10 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
     size_t fresh = 0;
     for (size_t i = i0; i < i1; ++i) {
       const uint32_t id = ids[i];
-      slot_[id] = static_cast<uint32_t>(i), seen_[id] = tick_;
+      // (slot_ is read at random by both threads in step 5: written only when it changes, its
+      // line is not taken from the other core's cache each tick)
+      if (slot_[id] != i) slot_[id] = static_cast<uint32_t>(i);
+      seen_[id] = tick_;
       fresh += state_[id] == kOut;
       const Box& b = boxes[i];
       const Fat& was = fat_[id];
@@ -298,6 +301,7 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
     const std::pair<uint32_t, uint32_t>* kept = kept_.data();
     const uint32_t* slot = slot_.data();
     for (size_t p = p0; p < p1; ++p) {
+      core::prefetch_write(&to[std::min(n + kKeptAhead, to.size() - 1)]);  // (read by the other thread last tick)
       if (p + kKeptAhead < p1) core::prefetch(&slot[kept[p + kKeptAhead].first]), core::prefetch(&slot[kept[p + kKeptAhead].second]);
       if (p + kKeptAhead / 2 < p1)
         for (const uint32_t id : {kept[p + kKeptAhead / 2].first, kept[p + kKeptAhead / 2].second})

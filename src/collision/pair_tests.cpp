@@ -122,7 +122,8 @@ bool Detector::pair_hit(const world::World& w, int a, int b, const Trace& h, Tie
     return true;
   }
   if (defer) {  // auto tier: allocate_tiers gives it its tier first
-    defer->k = k, defer->exact = tier, defer->t_in = h.fraction, defer->t_out = h.exit_fraction;
+    defer->a = a, defer->b = b, defer->b_fixed = false;
+    defer->exact = tier, defer->t_in = h.fraction, defer->t_out = h.exit_fraction;
     defer->closing = (ents.vel[a] - ents.vel[b]).norm();
     return false;
   }
@@ -171,9 +172,9 @@ void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
   }
   Contact k;
   Pending q;
-  q.k.a = -1;
+  q.a = -1;
   if (!pair_hit(w, a, b, h, tier, k, L, opt_.tier == Tier::Auto ? &q : nullptr)) {
-    if (q.k.a >= 0) {  // deferred to allocate_tiers
+    if (q.a >= 0) {  // deferred to allocate_tiers
       q.ia = static_cast<uint32_t>(ia), q.ib = static_cast<uint32_t>(ib);
       q.rank_a = ta->rank, q.rank_b = tb->rank, q.required = ta->required || tb->required;
       L.pending.push_back(q);
@@ -186,7 +187,8 @@ void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
 
 void Detector::decide_pending(const world::World& w, size_t p, Lane& L) {
   const Pending& q = pending_[p];
-  Contact k = q.k;
+  Contact k;
+  k.a = q.a, k.b = q.b, k.b_fixed = q.b_fixed, k.dt_s = opt_.dt_s;
   if (q.tier == Tier::Sphere) {  // the thesis spheres swept: what the sphere tier finds
     const int b = k.b;
     const Swept& sa = swept_[q.ia];

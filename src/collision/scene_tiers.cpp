@@ -24,12 +24,12 @@ ViewVolume ViewVolume::box(const Vec3& lo, const Vec3& hi) {
 void Detector::allocate_tiers(const world::World& w) {
   // Required: a driven or snapshotted vehicle (set when the pair was made), or a body seen by a viewer.
   for (Pending& q : pending_) {
-    const int b = q.k.b;
+    const int b = q.b;
     bool req = q.required;
     for (size_t v = 0; v < views_.size() && !req; ++v) {
       const ViewVolume& vv = views_[v];
       req = vv.sphere_inside(swept_[q.ia].c1, swept_[q.ia].r_bound) ||
-            (q.k.b_fixed ? vv.sphere_inside(world::fixed_centre(w, b), fixed_r_[b])
+            (q.b_fixed ? vv.sphere_inside(world::fixed_centre(w, b), fixed_r_[b])
                          : vv.sphere_inside(swept_[q.ib].c1, swept_[q.ib].r_bound));
     }
     q.required = req;
@@ -41,7 +41,7 @@ void Detector::allocate_tiers(const world::World& w) {
   size_t required = 0;
   for (uint32_t i = 0; i < pending_order_.size(); ++i) {
     const Pending& q = pending_[i];
-    pending_order_[i] = {q.closing, q.rank_a, q.rank_b, i, q.required, q.k.b_fixed};
+    pending_order_[i] = {q.closing, q.rank_a, q.rank_b, i, q.required, q.b_fixed};
     required += q.required;
   }
   auto more_important = [](const Importance& x, const Importance& y) {
@@ -88,7 +88,7 @@ void Detector::allocate_tiers(const world::World& w) {
     left_us -= raise_us(t);
     times_.charged += raise_us(t) / 1000.0;
     if (t < q.exact) ++stats_.tier_lowered;
-    choices_.push_back({q.k.a, q.k.b, q.k.b_fixed, q.required, q.exact, t});
+    choices_.push_back({q.a, q.b, q.b_fixed, q.required, q.exact, t});
   }
 }
 
