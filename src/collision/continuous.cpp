@@ -3,8 +3,10 @@
 // shapes, the passes of a tick (detect_continuous), their lanes and an entity's fixed objects;
 // the tests of one moving pair and the narrow phase are in pair_tests.cpp.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 #include "collision/collision.hpp"
@@ -14,6 +16,11 @@
 
 namespace npsnet::collision {
 namespace {
+
+// Whether two orientations are the same floats, bit for bit (-0 is not +0).
+bool same_bits(const std::array<float, 3>& x, const std::array<float, 3>& y) {
+  return std::memcmp(x.data(), y.data(), sizeof(x)) == 0;
+}
 
 // Rejects an entity whose position, velocity or orientation is NaN or infinite.
 void check_finite(const world::Entities& ents, int e) {
@@ -284,9 +291,14 @@ void Detector::detect_continuous(const world::World& w) {
       const Shape& s = shapes_[kd.models[ents.state[e]]];
       sw.r_bound = top == Tier::Sphere ? sw.r_sphere : std::max(sw.r_sphere, static_cast<float>(s.bound_radius * 1.0001 + 1e-3));
       // Turning: the start orientation is the last tick's end (same kind, active then).
+      // (Each written only when its bits change: a vehicle parked, or going straight on the
+      // level, stores nothing here, and its lines are not written back.)
       const Hpr now{ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]};
-      start_hpr_[e] = prev_ok_[e] && prev_kind_[e] == ents.kind[e] ? prev_hpr_[e] : now;
-      prev_hpr_[e] = now, prev_kind_[e] = ents.kind[e], prev_ok_[e] = 1;
+      const Hpr& start = prev_ok_[e] && prev_kind_[e] == ents.kind[e] ? prev_hpr_[e] : now;
+      if (!same_bits(start_hpr_[e], start)) start_hpr_[e] = start;
+      if (!same_bits(prev_hpr_[e], now)) prev_hpr_[e] = now;
+      if (prev_kind_[e] != ents.kind[e]) prev_kind_[e] = ents.kind[e];
+      if (!prev_ok_[e]) prev_ok_[e] = 1;
       // The model's centre turns about its origin: it strays from the straight sweep by at most
       // turn * |centre| (the turn bounded by the sum of the three angles' changes).
       if (top != Tier::Sphere && start_hpr_[e] != now) {
