@@ -211,18 +211,24 @@ TEST(Continuous, EpisodeReportedOnceWhileTouching) {
 }
 
 // Thousands of episodes at once: past kEpisodeIndexMin keys the detector finds last tick's
-// episodes through each entity's first key, not a binary search. Each is still reported once;
-// those of bodies moved away end, and begin again (one contact each) when they come back.
+// episodes through each entity's bucket (a counting sort by lower index), and the fixed
+// contacts' in the sorted keys after the buckets. Each is still reported once; those of bodies
+// moved away end, and begin again (one contact each) when they come back.
 TEST(Continuous, ThousandsOfEpisodesEachReportedOnce) {
   auto w = test::flat_world();
   const int side = 40;  // a 40 x 40 lattice, 4 m apart: each tank's sphere meets a score of others
   for (int i = 0; i < side; ++i)
     for (int j = 0; j < side; ++j) test::add_vehicle(w, test::numbered("v", side * i + j), "m1a1", 400 + 4.0 * i, 400 + 4.0 * j, 0, 0);
+  for (int i = 0; i < 10; ++i)  // trees among them: fixed contacts among the indexed keys
+    for (int j = 0; j < 10; ++j) test::add_fixed(w, test::numbered("t", 10 * i + j), "tree", 402 + 16.0 * i, 402 + 16.0 * j);
   test::index_fixed(w);
   collision::Detector d(continuous(0.1, collision::Tier::Sphere));
   std::vector<collision::Contact> first, c;
   d.detect(w, first);
   ASSERT_GE(first.size(), 4096u);  // enough episodes for the indexed look-up
+  size_t with_trees = 0;
+  for (const auto& k : first) with_trees += k.b_fixed;
+  ASSERT_GT(with_trees, 100u);
   d.detect(w, c);
   EXPECT_EQ(c.size(), 0u);  // all still touching
   // Every 7th tank driven off, each alone on a 40 m lattice: their episodes end.
@@ -238,11 +244,11 @@ TEST(Continuous, ThousandsOfEpisodesEachReportedOnce) {
   for (size_t e = 0; e < w.ents.size(); ++e) w.ents.pos[e] = home[e];
   c.clear();
   d.detect(w, c);
-  size_t again = 0;  // the first tick's contacts with a moved tank
-  for (const auto& k : first) again += moved[k.a] || moved[k.b];
-  EXPECT_GT(again, 0u);
+  size_t again = 0, again_trees = 0;  // the first tick's contacts with a moved tank
+  for (const auto& k : first) again += moved[k.a] || (!k.b_fixed && moved[k.b]), again_trees += k.b_fixed && moved[k.a];
+  EXPECT_GT(again_trees, 0u);
   EXPECT_EQ(c.size(), again);
-  for (const auto& k : c) EXPECT_TRUE(moved[k.a] || moved[k.b]) << k.a << " " << k.b;
+  for (const auto& k : c) EXPECT_TRUE(moved[k.a] || (!k.b_fixed && moved[k.b])) << k.a << " " << k.b;
 }
 
 TEST(Tiers, CheapestTierDecidesAndAForcedTierIsObeyed) {
