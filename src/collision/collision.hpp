@@ -241,7 +241,6 @@ class Detector {
   // A moving pair, first its sweep at the tier it needs (pair_tier: the sphere for a munition):
   // of its spheres, or of its bounds when a tier above the sphere may be asked (counted).
   // hit_only: sphere_sweep's hit_only (a running episode needs only whether its bounds meet).
-  Tier pair_tier(const world::World& w, int a, int b) const;
   static Trace pair_sweep(Tier tier, const Vec3& c0a, const Vec3& c1a, double rsa, double rba, const Vec3& c0b,
                           const Vec3& c1b, double rsb, double rbb, Lane& L, bool hit_only = false);
   // Then, after the sweep h hit, for a pair not in a running episode (one that is goes on while
@@ -291,6 +290,10 @@ class Detector {
   };
   std::vector<Swept> swept_;
   std::vector<SweptTags> tags_;
+  // The tier a moving pair needs: the sphere when either is a munition, else the lower top tier.
+  static Tier pair_tier(const SweptTags& a, const SweptTags& b) {
+    return a.munition || b.munition ? Tier::Sphere : std::min(a.top, b.top);
+  }
   std::vector<Box> boxes_;              // swept boxes
   std::vector<std::pair<uint32_t, uint32_t>> pairs_;
   PairCache moving_;  // the moving bodies' broad phase, kept across ticks

@@ -70,17 +70,19 @@ bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
   for (int e : {a, b}) start_hpr_[e] = Hpr{ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]};  // no turn known
   Vec3 c0[2], c1[2];
   double rs[2], rb[2];
+  SweptTags t[2]{};  // (the tier's part: rank and required are not asked here)
   for (int s = 0; s < 2; ++s) {
     const int e = s ? b : a;
     c1[s] = world::entity_centre(w, e);
     c0[s] = c1[s] - ents.vel[e] * opt_.dt_s;
     rs[s] = world::entity_radius(w, e);
     const Tier top = opt_.tier != Tier::Auto ? opt_.tier : top_tier(w.kinds[ents.kind[e]]);
+    t[s].top = top, t[s].munition = w.is_munition(e);
     const Shape& sh = shapes_[w.kinds[ents.kind[e]].models[ents.state[e]]];
     rb[s] = top == Tier::Sphere ? rs[s] : std::max(rs[s], sh.bound_radius * 1.0001 + 1e-3);
   }
   Lane& L = lane(0);
-  const Tier tier = pair_tier(w, a, b);
+  const Tier tier = pair_tier(t[0], t[1]);
   const Trace h = pair_sweep(tier, c0[0], c1[0], rs[0], rb[0], c0[1], c1[1], rs[1], rb[1], L);
   const bool hit = h.hit && pair_hit(w, a, b, h, tier, k, L);
   merge_lanes(1);

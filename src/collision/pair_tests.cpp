@@ -94,13 +94,6 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
   return true;
 }
 
-Tier Detector::pair_tier(const world::World& w, int a, int b) const {
-  const auto& ents = w.ents;
-  return w.is_munition(a) || w.is_munition(b) ? Tier::Sphere
-         : opt_.tier != Tier::Auto            ? opt_.tier
-                                               : std::min(top_tier(w.kinds[ents.kind[a]]), top_tier(w.kinds[ents.kind[b]]));
-}
-
 Trace Detector::pair_sweep(Tier tier, const Vec3& c0a, const Vec3& c1a, double rsa, double rba, const Vec3& c0b,
                            const Vec3& c1b, double rsb, double rbb, Lane& L, bool hit_only) {
   ++L.stats.sweep_pairs;
@@ -161,7 +154,7 @@ void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
   // drop its contact, so none is made and its sweep asks only whether they meet (in a crowd of
   // overlapping vehicles, most of the pairs).
   const bool continuing = was_touching(a, b);
-  const Tier tier = ta->munition || tb->munition ? Tier::Sphere : std::min(ta->top, tb->top);  // pair_tier
+  const Tier tier = pair_tier(*ta, *tb);
   const Trace h = pair_sweep(tier, sa->c0, sa->c1, sa->r_sphere, sa->r_bound, sb->c0, sb->c1, sb->r_sphere,
                              sb->r_bound, L, continuing);
   if (!h.hit) return;
