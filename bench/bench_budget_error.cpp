@@ -20,11 +20,13 @@
 //   governs, timed and as charged). --spatial: the same crowd
 //   stored in Z order of its cells (crowd_scene.hpp): what a spatial order of the entities gives.
 //   --budget-only: the default budget's run alone (to time or profile the budgeted step).
+//   --tick-s S: the tick (default 0.1 s, TARGETS.md's step; 1/60 s: a 60 Hz node's, whose
+//   frame the default budget is sized for: each sweep a sixth as long).
 // Columns (vehicles, --fixed): budget_ms, pairs (needing a narrow phase, with a verdict), lowered
 // (pairs given a tier below their exact one), contacts, truth (FCL contacts), false_pos, misses,
 // point error median / p95 (m, over the contacts both find that do not touch from the tick's
 // start), detect_ms (our detect, wall, one thread).
-// Usage: bench_budget_error [--vehicles N] [--side M] [--fixed] [--crowd N [--threads T] [--ticks K] [--spatial] [--budget-only]] [--csv FILE]
+// Usage: bench_budget_error [--vehicles N] [--side M] [--fixed] [--crowd N [--threads T] [--ticks K] [--spatial] [--budget-only] [--tick-s S]] [--csv FILE]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -234,13 +236,12 @@ int accuracy(int n, double side, bool fixed, std::string csv) {
 }
 
 // The full continuous step in the crowd, with the default budget and without one.
-int crowd(int n, int threads, int ticks, bool spatial, bool budget_only, std::string csv) {
+int crowd(int n, int threads, int ticks, bool spatial, bool budget_only, double dt, std::string csv) {
   auto sc = world::load_scenario(std::string(npsnet::dirs::source()) + "/scenarios/default.toml");
   world::World w = world::build_world(sc);
   w.ents = world::Entities{};
   bench::add_crowd(w, n, spatial);
   for (auto& s : w.ents.snapshots) s = 0;  // background traffic: nobody snapshots, drives or watches it
-  const double dt = kTickS;
   std::vector<Vec3> step;
   for (size_t e = 0; e < w.ents.size(); ++e) step.push_back(w.ents.vel[e] * dt);
   if (csv.empty()) csv = std::string(npsnet::dirs::source()) + "/bench/results/crowd_budget.csv";
@@ -289,6 +290,7 @@ int crowd(int n, int threads, int ticks, bool spatial, bool budget_only, std::st
 
 int main(int argc, char** argv) {
   int n = 3000, crowd_n = 0, threads = 1, ticks = 4;
+  double crowd_dt = kTickS;
   bool spatial = false, budget_only = false;
   double side = 600;
   bool fixed = false;
@@ -301,6 +303,8 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "--crowd: threads of the detector's pool (the node's --threads)")->capture_default_str()->check(CLI::Range(1, core::Jobs::kMaxThreads));
   app.add_option("--ticks", ticks, "--crowd: ticks per budget (tick 0: every contact new)")->capture_default_str()->check(CLI::Range(1, 1000));
   app.add_flag("--spatial", spatial, "--crowd: the vehicles stored in Z order of their cells (neighbours near in memory)");
+  app.add_option("--tick-s", crowd_dt, "--crowd: the tick (s): 0.1 as TARGETS.md's peers; 1/60 a 60 Hz node's, the rate the default budget is sized for")
+      ->capture_default_str()->check(CLI::Range(1e-4, 1.0));
   app.add_flag("--budget-only", budget_only, "--crowd: only the default budget's run (not the unbudgeted one)");
   app.add_option("--csv", csv, "where the CSV goes (default: bench/results/...)");
   try {
@@ -308,7 +312,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
-  if (crowd_n > 0) return crowd(crowd_n, threads, ticks, spatial, budget_only, csv);
+  if (crowd_n > 0) return crowd(crowd_n, threads, ticks, spatial, budget_only, crowd_dt, csv);
   return accuracy(n, side, fixed, csv);
 }
 #endif

@@ -234,7 +234,7 @@ void Detector::detect_continuous(const world::World& w) {
     order_.push_back(static_cast<uint32_t>(e));
   }
   const size_t m = order_.size();
-  swept_.resize(m), tags_.resize(m), boxes_.resize(m);
+  swept_.resize(m), tags_.resize(m), boxes_.resize(m), travel_.resize(m);
 
   // Fixed objects: the world's grid (world/fixed_grid.hpp) lists each by its reach; each is
   // tested here by its sphere (or its models' bound, when a tier above the sphere may be asked),
@@ -312,6 +312,8 @@ void Detector::detect_continuous(const world::World& w) {
         sw.r_bound += static_cast<float>(turn * kPi / 180 * s.sphere_centre.norm());
       }
       boxes_[i] = swept_box(sw.c0, sw.c1, sw.r_bound);
+      const double tx = sw.c1.x() - sw.c0.x(), ty = sw.c1.y() - sw.c0.y();
+      travel_[i] = static_cast<float>(std::sqrt(tx * tx + ty * ty));
       fixed_contacts(w, i, lanes_[c]);
     }
   });
@@ -319,7 +321,7 @@ void Detector::detect_continuous(const world::World& w) {
 
   // Moving pairs: the fat boxes kept from the last tick (pair_cache.hpp; entities keep their
   // index), then the analytic sweep, then the tiers.
-  moving_.pairs(boxes_, order_, ents.size(), pairs_, jobs_);
+  moving_.pairs(boxes_, order_, ents.size(), pairs_, jobs_, &travel_);
   lap(times_.broad);
   in_lanes(pairs_.size(), kPairGrain, kPairChunksPerThread, [&](int c, size_t p0, size_t p1) {
     for (size_t p = p0; p < p1; ++p) {

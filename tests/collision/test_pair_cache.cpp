@@ -33,9 +33,11 @@ struct Drift {
     }
   }
   // One tick: bodies move (a few turn, a few switch on or off, now and then one flies fast).
-  void step(std::vector<Box>& boxes, std::vector<uint32_t>& ids) {
+  // travel: each listed body's x-y travel this tick (PairCache's margins), when asked.
+  void step(std::vector<Box>& boxes, std::vector<uint32_t>& ids, std::vector<float>* travel = nullptr) {
     std::uniform_real_distribution<float> u(0, 1);
     boxes.clear(), ids.clear();
+    if (travel) travel->clear();
     for (size_t i = 0; i < pos.size(); ++i) {
       if (u(rng) < 0.02) active[i] = !active[i];
       if (u(rng) < 0.05) vel[i] = Vec3((u(rng) - 0.5) * 6, (u(rng) - 0.5) * 6, 0);
@@ -45,6 +47,7 @@ struct Drift {
       if (!active[i]) continue;
       ids.push_back(static_cast<uint32_t>(i));
       boxes.push_back(collision::swept_box(c0, pos[i], r[i]));
+      if (travel) travel->push_back(static_cast<float>(v.head<2>().norm()));
     }
   }
 };
@@ -57,26 +60,28 @@ Pairs sorted(Pairs p) {
 }  // namespace
 
 TEST(PairCache, AgreesWithBruteForceTickAfterTick) {
-  for (int scene = 0; scene < 6; ++scene) {
-    const int n = 200 + scene * 300;
-    const float side = scene % 2 ? 150.0f : 20.0f * std::sqrt(static_cast<float>(n)) * 4;  // crowded, spread
-    Drift d(n, side, 100 + scene);
-    collision::PairCache cache;
-    std::vector<Box> boxes;
-    std::vector<uint32_t> ids;
-    Pairs got, want;
-    size_t found = 0, moved = 0;
-    for (int tick = 0; tick < 60; ++tick) {
-      d.step(boxes, ids);
-      cache.pairs(boxes, ids, d.pos.size(), got);
-      collision::brute_pairs(boxes, want);
-      ASSERT_EQ(sorted(got), want) << "scene " << scene << ", tick " << tick;
-      found += want.size(), moved += cache.moved();
+  for (bool with_travel : {false, true})  // margins by extent alone, or by each body's travel too
+    for (int scene = 0; scene < 6; ++scene) {
+      const int n = 200 + scene * 300;
+      const float side = scene % 2 ? 150.0f : 20.0f * std::sqrt(static_cast<float>(n)) * 4;  // crowded, spread
+      Drift d(n, side, 100 + scene);
+      collision::PairCache cache;
+      std::vector<Box> boxes;
+      std::vector<uint32_t> ids;
+      std::vector<float> travel;
+      Pairs got, want;
+      size_t found = 0, moved = 0;
+      for (int tick = 0; tick < 60; ++tick) {
+        d.step(boxes, ids, with_travel ? &travel : nullptr);
+        cache.pairs(boxes, ids, d.pos.size(), got, nullptr, with_travel ? &travel : nullptr);
+        collision::brute_pairs(boxes, want);
+        ASSERT_EQ(sorted(got), want) << "scene " << scene << ", tick " << tick << (with_travel ? ", travel" : "");
+        found += want.size(), moved += cache.moved();
+      }
+      EXPECT_GT(found, 0u) << "scene " << scene << ": pairs to find";
+      // (about a quarter move a tick here; with no margin, fat box = box, about two thirds)
+      EXPECT_LT(moved, static_cast<size_t>(60 * n) * 2 / 5) << "most bodies keep their fat box from tick to tick";
     }
-    EXPECT_GT(found, 0u) << "scene " << scene << ": pairs to find";
-    // (about a quarter move a tick here; with no margin, fat box = box, about two thirds)
-    EXPECT_LT(moved, static_cast<size_t>(60 * n) * 2 / 5) << "most bodies keep their fat box from tick to tick";
-  }
 }
 
 TEST(PairCache, SamePairsInTheSameOrderOnOneAndSeveralThreads) {
@@ -87,11 +92,12 @@ TEST(PairCache, SamePairsInTheSameOrderOnOneAndSeveralThreads) {
     jobs.set_max_grain(1);  // every stage split as finely as the pool allows
     std::vector<Box> boxes_a, boxes_b;
     std::vector<uint32_t> ids_a, ids_b;
+    std::vector<float> travel_a, travel_b;  // margins by travel half the ticks
     Pairs pa, pb;
     for (int tick = 0; tick < 30; ++tick) {
-      a.step(boxes_a, ids_a), b.step(boxes_b, ids_b);
-      one.pairs(boxes_a, ids_a, a.pos.size(), pa);
-      many.pairs(boxes_b, ids_b, b.pos.size(), pb, &jobs);
+      a.step(boxes_a, ids_a, &travel_a), b.step(boxes_b, ids_b, &travel_b);
+      one.pairs(boxes_a, ids_a, a.pos.size(), pa, nullptr, tick % 10 < 5 ? &travel_a : nullptr);
+      many.pairs(boxes_b, ids_b, b.pos.size(), pb, &jobs, tick % 10 < 5 ? &travel_b : nullptr);
       ASSERT_EQ(pa, pb) << threads << " threads, tick " << tick;
     }
   }
@@ -115,7 +121,11 @@ TEST(PairCache, OddBoxesAndACellThatNoLongerFits) {
     }
     boxes[7] = Box{{nan, 0, 0}, {1, 1, 1}};
     boxes[8] = Box{{1e12f, 1e12f, 0}, {1e12f + 5, 1e12f + 5, 1}};
-    cache.pairs(boxes, ids, 800, got);
+    // Margins by travel on odd ticks: none, some, a NaN's and an infinite one among them.
+    std::vector<float> travel(boxes.size());
+    for (size_t i = 0; i < travel.size(); ++i) travel[i] = static_cast<float>(i % 4);
+    travel[7] = nan, travel[9] = std::numeric_limits<float>::infinity();
+    cache.pairs(boxes, ids, 800, got, nullptr, tick % 2 ? &travel : nullptr);
     collision::brute_pairs(boxes, want);
     ASSERT_EQ(sorted(got), want) << "tick " << tick;
     for (const auto& [i, j] : got) EXPECT_TRUE(i != 7 && j != 7);
@@ -159,4 +169,52 @@ TEST(PairCache, ACrowdRockingInPlaceKeepsItsPairsTickAfterTick) {
     }
     EXPECT_GE(still, 20) << "most ticks, no body left its fat box";
   }
+}
+
+// Margins by travel (the detector's: each sweep's x-y length): a dense crowd whose bodies rock
+// by 4 cm keeps fat boxes an eighth of their extent wider (kMarginMinOfExtent), not a half, so
+// it keeps far fewer pairs that do not overlap; no body leaves its fat box after the first tick;
+// the pairs are brute force's. Bodies that travel far keep the wide margin.
+TEST(PairCache, MarginsByTravelKeepFewerPairsInADenseCrowd) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0, 1);
+  std::vector<Vec3> pos;
+  for (int i = 0; i < 2000; ++i) pos.emplace_back(u(rng) * 200, u(rng) * 200, 0);
+  size_t kept[2] = {0, 0};
+  for (int with_travel : {0, 1}) {
+    collision::PairCache cache;
+    std::vector<Box> boxes;
+    std::vector<uint32_t> ids;
+    std::vector<float> travel;
+    Pairs got, want;
+    for (int tick = 0; tick < 6; ++tick) {
+      const Vec3 rock(tick % 2 ? 0.04 : -0.04, 0, 0);
+      boxes.clear(), ids.clear(), travel.clear();
+      for (uint32_t i = 0; i < pos.size(); ++i) {
+        ids.push_back(i);
+        boxes.push_back(collision::swept_box(pos[i], pos[i] + rock, 3.0));
+        travel.push_back(0.04f);
+      }
+      cache.pairs(boxes, ids, pos.size(), got, nullptr, with_travel ? &travel : nullptr);
+      collision::brute_pairs(boxes, want);
+      ASSERT_EQ(sorted(got), want) << "tick " << tick << (with_travel ? ", travel" : "");
+      if (tick > 1) {
+        EXPECT_EQ(cache.moved(), 0u) << "tick " << tick;
+      }
+    }
+    kept[with_travel] = cache.kept_pairs();
+    EXPECT_GE(cache.kept_pairs(), want.size());
+  }
+  // (6.04 m boxes: fat 12.1 m with the half margin, 7.55 m with the eighth: about 2.5x fewer kept)
+  EXPECT_LT(kept[1] * 2, kept[0]) << kept[1] << " kept pairs by travel, " << kept[0] << " by extent";
+  // Travelling 2 m a tick (16 ticks: 32 m, past the half extent): the margin of the extent's half.
+  collision::PairCache a, b;
+  std::vector<Box> boxes;
+  std::vector<uint32_t> ids;
+  for (uint32_t i = 0; i < pos.size(); ++i) ids.push_back(i), boxes.push_back(collision::swept_box(pos[i], pos[i], 3.0));
+  const std::vector<float> far(pos.size(), 2.0f);
+  Pairs pa, pb;
+  a.pairs(boxes, ids, pos.size(), pa, nullptr, &far);
+  b.pairs(boxes, ids, pos.size(), pb);
+  EXPECT_EQ(a.kept_pairs(), b.kept_pairs());
 }
