@@ -295,7 +295,7 @@ class Detector {
     return a.munition || b.munition ? Tier::Sphere : std::min(a.top, b.top);
   }
   std::vector<Box> boxes_;              // swept boxes
-  std::vector<float> travel_;           // each sweep's x-y length (m): PairCache's margins
+  std::vector<PairCache::Travel> travel_;  // each sweep's x-y travel (m): PairCache's margins
   std::vector<std::pair<uint32_t, uint32_t>> pairs_;
   PairCache moving_;  // the moving bodies' broad phase, kept across ticks
   std::vector<float> fixed_x_, fixed_y_, fixed_r_;  // fixed objects' test circles (m)

@@ -312,8 +312,7 @@ void Detector::detect_continuous(const world::World& w) {
         sw.r_bound += static_cast<float>(turn * kPi / 180 * s.sphere_centre.norm());
       }
       boxes_[i] = swept_box(sw.c0, sw.c1, sw.r_bound);
-      const double tx = sw.c1.x() - sw.c0.x(), ty = sw.c1.y() - sw.c0.y();
-      travel_[i] = static_cast<float>(std::sqrt(tx * tx + ty * ty));
+      travel_[i] = {static_cast<float>(sw.c1.x() - sw.c0.x()), static_cast<float>(sw.c1.y() - sw.c0.y())};
       fixed_contacts(w, i, lanes_[c]);
     }
   });

@@ -22,10 +22,17 @@ constexpr size_t kKeptAhead = 32;
 constexpr double kMaxCell = 0x1p29;   // a fat box's corners beyond this many cells: large
 }  // namespace
 
-PairCache::Fat PairCache::fat_of(const Box& b, float travel) const {
+PairCache::Fat PairCache::fat_of(const Box& b, const Travel* travel) const {
   const float ext = std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]);
-  const float m = std::clamp(kTravelTicks * travel, kMarginMinOfExtent * ext, kMarginOfExtent * ext);
-  return {b.lo[0] - m, b.lo[1] - m, b.hi[0] + m, b.hi[1] + m};
+  if (!travel) {
+    const float m = kMarginOfExtent * ext;
+    return {b.lo[0] - m, b.lo[1] - m, b.hi[0] + m, b.hi[1] + m};
+  }
+  // Ahead: where the box goes in the next ticks if the body keeps going (a NaN travel: nowhere).
+  const float m = kMarginMinOfExtent * ext, most = kAheadOfExtent * ext;
+  const float ax = std::clamp(kTravelTicks * travel->x, -most, most), ay = std::clamp(kTravelTicks * travel->y, -most, most);
+  return {b.lo[0] - m + std::min(0.0f, ax), b.lo[1] - m + std::min(0.0f, ay), b.hi[0] + m + std::max(0.0f, ax),
+          b.hi[1] + m + std::max(0.0f, ay)};
 }
 
 PairCache::Range PairCache::cells_of(const Fat& f) const {
@@ -60,14 +67,14 @@ void PairCache::build(const std::vector<Box>& boxes) {
   double sum = 0;
   size_t counted = 0;
   for (const Box& b : boxes) {
-    const Fat f = fat_of(b, kNoTravel);
+    const Fat f = fat_of(b, nullptr);
     const double e = std::max(f.hix - f.lox, f.hiy - f.loy);
     if (std::isfinite(e)) sum += e, ++counted;
   }
   const double cap = counted ? 4 * sum / counted : 0;
   double ext = 0;
   for (const Box& b : boxes) {
-    const Fat f = fat_of(b, kNoTravel);
+    const Fat f = fat_of(b, nullptr);
     const double e = std::max(f.hix - f.lox, f.hiy - f.loy);
     if (e <= cap) ext = std::max(ext, e);
   }
@@ -154,7 +161,7 @@ void PairCache::query(const Moved& m, std::vector<std::pair<uint32_t, uint32_t>>
 
 void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>& ids, size_t id_count,
                       std::vector<std::pair<uint32_t, uint32_t>>& out, core::Jobs* jobs,
-                      const std::vector<float>* travel) {
+                      const std::vector<Travel>* travel) {
   assert(boxes.size() == ids.size() && (!travel || travel->size() == boxes.size()));
   out.clear();
   const size_t n = boxes.size();
@@ -190,7 +197,7 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
       if (state_[id] == kIn && b.lo[0] >= was.lox && b.lo[1] >= was.loy && b.hi[0] <= was.hix && b.hi[1] <= was.hiy)
         continue;
       gone_moved_[id] = tick_;
-      const Fat f = fat_of(b, travel ? (*travel)[i] : kNoTravel);
+      const Fat f = fat_of(b, travel ? &(*travel)[i] : nullptr);
       const Range r = ordinary(f) ? cells_of(f) : Range{0, 0, -1, -1};
       mv.push_back(Moved{id, f, r});
       const Range& q = range_[id];

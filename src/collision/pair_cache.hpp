@@ -9,12 +9,11 @@
 //    the set MovingGrid::pairs gives for the same boxes. The order depends only on the inputs of
 //    this call and the earlier ones, never on the thread count (the detector sorts its results).
 //  * How: each body keeps a fat box, its x-y box grown by a margin, listed in the cells of a
-//    hashed grid. The margin: kMarginOfExtent of the box's larger extent; given each body's
-//    travel this tick (`travel`, m: the detector's sweep lengths), kTravelTicks of it, kept
-//    within [kMarginMinOfExtent, kMarginOfExtent] of the extent: a slow body in a crowd keeps a
-//    thin margin (fewer pairs kept that do not overlap: the 100,000-vehicle crowd at a 60 Hz tick
-//    keeps 186,000 instead of 323,000), a fast one the wide one (it leaves its fat box no
-//    more often than before). A body whose box leaves its fat box (or that is new,
+//    hashed grid. The margin: kMarginOfExtent of the box's larger extent all round; given each
+//    body's travel this tick (`travel`, m: the detector's sweep, end less start), kTravelTicks
+//    of that travel ahead (at most kAheadOfExtent of the extent) and kMarginMinOfExtent all
+//    round. A body going straight then keeps its fat box kTravelTicks ticks, a slow one in a
+//    crowd keeps a thin one (fewer pairs kept that do not overlap). A body whose box leaves its fat box (or that is new,
 //    or gone) "moves": its fat box is made again and its pairs found again, from the grid; the
 //    others keep theirs. The kept pairs are those whose fat boxes overlap; a tick reports the ones
 //    whose boxes overlap (when no body moved or went, the kept pairs are not walked to drop
@@ -37,7 +36,6 @@
 // Units: metres, local frame (float boxes, as MovingGrid).
 #pragma once
 #include <cstdint>
-#include <limits>
 #include <utility>
 #include <vector>
 
@@ -48,15 +46,18 @@ namespace npsnet::collision {
 
 class PairCache {
  public:
-  // A fat box's margin: kTravelTicks of the body's travel a tick, within [kMarginMinOfExtent,
-  // kMarginOfExtent] of its box's larger extent (without travel: kMarginOfExtent).
-  static constexpr float kMarginOfExtent = 0.5f, kMarginMinOfExtent = 0.125f, kTravelTicks = 16.0f;
+  // A fat box's margins, fractions of its box's larger extent (above), and ticks of travel.
+  static constexpr float kMarginOfExtent = 0.5f, kMarginMinOfExtent = 0.125f, kAheadOfExtent = 2.0f;
+  static constexpr float kTravelTicks = 8.0f;
+  struct Travel {  // a body's x-y travel over this tick (m)
+    float x, y;
+  };
   static constexpr int kMaxCellsPerAxis = 4;
   static constexpr size_t kRebuildLarge = 64;
 
   void pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>& ids, size_t id_count,
              std::vector<std::pair<uint32_t, uint32_t>>& out, core::Jobs* jobs = nullptr,
-             const std::vector<float>* travel = nullptr);
+             const std::vector<Travel>* travel = nullptr);
   // The last call's bodies that moved (fat box made again, large ones included); grid builds.
   size_t moved() const { return moved_.size(); }
   size_t kept_pairs() const { return kept_.size(); }  // pairs whose fat boxes overlap (large bodies' aside)
@@ -93,8 +94,7 @@ class PairCache {
   };
   enum State : uint8_t { kOut = 0, kIn = 1, kLarge = 2 };
 
-  static constexpr float kNoTravel = std::numeric_limits<float>::infinity();  // fat_of: the widest margin
-  Fat fat_of(const Box& b, float travel) const;
+  Fat fat_of(const Box& b, const Travel* travel) const;  // (travel null: kMarginOfExtent all round)
   Range cells_of(const Fat& f) const;
   uint32_t bucket_of(int32_t x, int32_t y) const;
   bool ordinary(const Fat& f) const;

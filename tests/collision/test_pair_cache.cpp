@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -13,6 +14,7 @@
 using namespace npsnet;
 using collision::Box;
 using Pairs = std::vector<std::pair<uint32_t, uint32_t>>;
+using Travel = collision::PairCache::Travel;
 
 namespace {
 
@@ -34,7 +36,7 @@ struct Drift {
   }
   // One tick: bodies move (a few turn, a few switch on or off, now and then one flies fast).
   // travel: each listed body's x-y travel this tick (PairCache's margins), when asked.
-  void step(std::vector<Box>& boxes, std::vector<uint32_t>& ids, std::vector<float>* travel = nullptr) {
+  void step(std::vector<Box>& boxes, std::vector<uint32_t>& ids, std::vector<Travel>* travel = nullptr) {
     std::uniform_real_distribution<float> u(0, 1);
     boxes.clear(), ids.clear();
     if (travel) travel->clear();
@@ -47,7 +49,7 @@ struct Drift {
       if (!active[i]) continue;
       ids.push_back(static_cast<uint32_t>(i));
       boxes.push_back(collision::swept_box(c0, pos[i], r[i]));
-      if (travel) travel->push_back(static_cast<float>(v.head<2>().norm()));
+      if (travel) travel->push_back({static_cast<float>(v.x()), static_cast<float>(v.y())});
     }
   }
 };
@@ -68,7 +70,7 @@ TEST(PairCache, AgreesWithBruteForceTickAfterTick) {
       collision::PairCache cache;
       std::vector<Box> boxes;
       std::vector<uint32_t> ids;
-      std::vector<float> travel;
+      std::vector<Travel> travel;
       Pairs got, want;
       size_t found = 0, moved = 0;
       for (int tick = 0; tick < 60; ++tick) {
@@ -92,7 +94,7 @@ TEST(PairCache, SamePairsInTheSameOrderOnOneAndSeveralThreads) {
     jobs.set_max_grain(1);  // every stage split as finely as the pool allows
     std::vector<Box> boxes_a, boxes_b;
     std::vector<uint32_t> ids_a, ids_b;
-    std::vector<float> travel_a, travel_b;  // margins by travel half the ticks
+    std::vector<Travel> travel_a, travel_b;  // margins by travel half the ticks
     Pairs pa, pb;
     for (int tick = 0; tick < 30; ++tick) {
       a.step(boxes_a, ids_a, &travel_a), b.step(boxes_b, ids_b, &travel_b);
@@ -122,9 +124,10 @@ TEST(PairCache, OddBoxesAndACellThatNoLongerFits) {
     boxes[7] = Box{{nan, 0, 0}, {1, 1, 1}};
     boxes[8] = Box{{1e12f, 1e12f, 0}, {1e12f + 5, 1e12f + 5, 1}};
     // Margins by travel on odd ticks: none, some, a NaN's and an infinite one among them.
-    std::vector<float> travel(boxes.size());
-    for (size_t i = 0; i < travel.size(); ++i) travel[i] = static_cast<float>(i % 4);
-    travel[7] = nan, travel[9] = std::numeric_limits<float>::infinity();
+    std::vector<Travel> travel(boxes.size());
+    for (size_t i = 0; i < travel.size(); ++i) travel[i] = {static_cast<float>(i % 4) - 1.5f, static_cast<float>(i % 3)};
+    travel[7] = {nan, 0}, travel[9] = {std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
+    travel[11] = {0, nan};
     cache.pairs(boxes, ids, 800, got, nullptr, tick % 2 ? &travel : nullptr);
     collision::brute_pairs(boxes, want);
     ASSERT_EQ(sorted(got), want) << "tick " << tick;
@@ -171,10 +174,10 @@ TEST(PairCache, ACrowdRockingInPlaceKeepsItsPairsTickAfterTick) {
   }
 }
 
-// Margins by travel (the detector's: each sweep's x-y length): a dense crowd whose bodies rock
-// by 4 cm keeps fat boxes an eighth of their extent wider (kMarginMinOfExtent), not a half, so
-// it keeps far fewer pairs that do not overlap; no body leaves its fat box after the first tick;
-// the pairs are brute force's. Bodies that travel far keep the wide margin.
+// Margins by travel (the detector's: each sweep's end less its start): a dense crowd whose bodies
+// rock by 4 cm keeps fat boxes an eighth of their extent wider all round (kMarginMinOfExtent)
+// and 8 ticks of travel (32 cm) ahead, not a half all round, so it keeps far fewer pairs that do
+// not overlap; no body leaves its fat box after the first tick; the pairs are brute force's.
 TEST(PairCache, MarginsByTravelKeepFewerPairsInADenseCrowd) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(0, 1);
@@ -185,7 +188,7 @@ TEST(PairCache, MarginsByTravelKeepFewerPairsInADenseCrowd) {
     collision::PairCache cache;
     std::vector<Box> boxes;
     std::vector<uint32_t> ids;
-    std::vector<float> travel;
+    std::vector<Travel> travel;
     Pairs got, want;
     for (int tick = 0; tick < 6; ++tick) {
       const Vec3 rock(tick % 2 ? 0.04 : -0.04, 0, 0);
@@ -193,7 +196,7 @@ TEST(PairCache, MarginsByTravelKeepFewerPairsInADenseCrowd) {
       for (uint32_t i = 0; i < pos.size(); ++i) {
         ids.push_back(i);
         boxes.push_back(collision::swept_box(pos[i], pos[i] + rock, 3.0));
-        travel.push_back(0.04f);
+        travel.push_back({static_cast<float>(rock.x()), 0});
       }
       cache.pairs(boxes, ids, pos.size(), got, nullptr, with_travel ? &travel : nullptr);
       collision::brute_pairs(boxes, want);
@@ -205,16 +208,38 @@ TEST(PairCache, MarginsByTravelKeepFewerPairsInADenseCrowd) {
     kept[with_travel] = cache.kept_pairs();
     EXPECT_GE(cache.kept_pairs(), want.size());
   }
-  // (6.04 m boxes: fat 12.1 m with the half margin, 7.55 m with the eighth: about 2.5x fewer kept)
+  // (6.04 m boxes: fat 12.1 m square with the half margin; 7.55 m by 7.9 m by travel: about 2.5x
+  // fewer kept)
   EXPECT_LT(kept[1] * 2, kept[0]) << kept[1] << " kept pairs by travel, " << kept[0] << " by extent";
-  // Travelling 2 m a tick (16 ticks: 32 m, past the half extent): the margin of the extent's half.
-  collision::PairCache a, b;
-  std::vector<Box> boxes;
-  std::vector<uint32_t> ids;
-  for (uint32_t i = 0; i < pos.size(); ++i) ids.push_back(i), boxes.push_back(collision::swept_box(pos[i], pos[i], 3.0));
-  const std::vector<float> far(pos.size(), 2.0f);
-  Pairs pa, pb;
-  a.pairs(boxes, ids, pos.size(), pa, nullptr, &far);
-  b.pairs(boxes, ids, pos.size(), pb);
-  EXPECT_EQ(a.kept_pairs(), b.kept_pairs());
+}
+
+// Bodies driving straight (1 m a tick, 6.5 m boxes) keep their fat boxes kTravelTicks ticks: 8
+// ticks of travel ahead (8 m) against the extent's half all round (3.25 m: 3 or 4 ticks); the
+// pairs are brute force's either way.
+TEST(PairCache, ABodyGoingStraightKeepsItsFatBoxTravelTicks) {
+  size_t moved[2] = {0, 0};
+  for (int with_travel : {0, 1}) {
+    collision::PairCache cache;
+    std::vector<Box> boxes;
+    std::vector<uint32_t> ids;
+    std::vector<Travel> travel;
+    Pairs got, want;
+    for (int tick = 0; tick < 65; ++tick) {
+      boxes.clear(), ids.clear(), travel.clear();
+      for (uint32_t i = 0; i < 300; ++i) {
+        const Vec3 dir = i % 2 ? Vec3(1, 0, 0) : Vec3(0, -1, 0);  // east or south
+        const Vec3 p = Vec3((i % 20) * 40.0, (i / 20) * 40.0, 0) + dir * tick;
+        ids.push_back(i);
+        boxes.push_back(collision::swept_box(p - dir, p, 2.75));
+        travel.push_back({static_cast<float>(dir.x()), static_cast<float>(dir.y())});
+      }
+      cache.pairs(boxes, ids, 300, got, nullptr, with_travel ? &travel : nullptr);
+      collision::brute_pairs(boxes, want);
+      ASSERT_EQ(sorted(got), want) << "tick " << tick << (with_travel ? ", travel" : "");
+      if (tick > 0) moved[with_travel] += cache.moved();
+    }
+  }
+  EXPECT_LE(moved[1], 300u * 8) << "64 ticks: 7 or 8 fat boxes each by travel";
+  EXPECT_GE(moved[0], 300u * 15) << "64 ticks: 16 to 21 fat boxes each by extent";
+  std::printf("fat boxes made again in 64 ticks, 300 bodies: %zu by travel, %zu by extent\n", moved[1], moved[0]);
 }
