@@ -174,6 +174,32 @@ TEST(PairCache, ACrowdRockingInPlaceKeepsItsPairsTickAfterTick) {
   }
 }
 
+// n bodies for `ticks` ticks, body i swept from sweep(tick, i).first to .second (radius r), in a
+// PairCache with margins by travel (each sweep's x-y) or by extent alone; each tick's pairs are
+// brute force's; then on_tick(tick, cache).
+template <class Sweep, class OnTick>
+void run_bodies(bool with_travel, int ticks, uint32_t n, double r, Sweep&& sweep, OnTick&& on_tick) {
+  collision::PairCache cache;
+  std::vector<Box> boxes;
+  std::vector<uint32_t> ids;
+  std::vector<Travel> travel;
+  Pairs got, want;
+  for (int tick = 0; tick < ticks; ++tick) {
+    boxes.clear(), ids.clear(), travel.clear();
+    for (uint32_t i = 0; i < n; ++i) {
+      const auto [c0, c1] = sweep(tick, i);
+      ids.push_back(i);
+      boxes.push_back(collision::swept_box(c0, c1, r));
+      travel.push_back({static_cast<float>(c1.x() - c0.x()), static_cast<float>(c1.y() - c0.y())});
+    }
+    cache.pairs(boxes, ids, n, got, nullptr, with_travel ? &travel : nullptr);
+    collision::brute_pairs(boxes, want);
+    ASSERT_EQ(sorted(got), want) << "tick " << tick << (with_travel ? ", travel" : "");
+    EXPECT_GE(cache.kept_pairs(), want.size());
+    on_tick(tick, cache);
+  }
+}
+
 // Margins by travel (the detector's: each sweep's end less its start): a dense crowd whose bodies
 // rock by 4 cm keeps fat boxes an eighth of their extent wider all round (kMarginMinOfExtent)
 // and 8 ticks of travel (32 cm) ahead, not a half all round, so it keeps far fewer pairs that do
@@ -185,28 +211,15 @@ TEST(PairCache, MarginsByTravelKeepFewerPairsInADenseCrowd) {
   for (int i = 0; i < 2000; ++i) pos.emplace_back(u(rng) * 200, u(rng) * 200, 0);
   size_t kept[2] = {0, 0};
   for (int with_travel : {0, 1}) {
-    collision::PairCache cache;
-    std::vector<Box> boxes;
-    std::vector<uint32_t> ids;
-    std::vector<Travel> travel;
-    Pairs got, want;
-    for (int tick = 0; tick < 6; ++tick) {
-      const Vec3 rock(tick % 2 ? 0.04 : -0.04, 0, 0);
-      boxes.clear(), ids.clear(), travel.clear();
-      for (uint32_t i = 0; i < pos.size(); ++i) {
-        ids.push_back(i);
-        boxes.push_back(collision::swept_box(pos[i], pos[i] + rock, 3.0));
-        travel.push_back({static_cast<float>(rock.x()), 0});
-      }
-      cache.pairs(boxes, ids, pos.size(), got, nullptr, with_travel ? &travel : nullptr);
-      collision::brute_pairs(boxes, want);
-      ASSERT_EQ(sorted(got), want) << "tick " << tick << (with_travel ? ", travel" : "");
+    auto rocking = [&](int tick, uint32_t i) {
+      return std::pair<Vec3, Vec3>(pos[i], pos[i] + Vec3(tick % 2 ? 0.04 : -0.04, 0, 0));
+    };
+    run_bodies(with_travel, 6, 2000, 3.0, rocking, [&](int tick, const collision::PairCache& cache) {
       if (tick > 1) {
         EXPECT_EQ(cache.moved(), 0u) << "tick " << tick;
       }
-    }
-    kept[with_travel] = cache.kept_pairs();
-    EXPECT_GE(cache.kept_pairs(), want.size());
+      kept[with_travel] = cache.kept_pairs();
+    });
   }
   // (6.04 m boxes: fat 12.1 m square with the half margin; 7.55 m by 7.9 m by travel: about 2.5x
   // fewer kept)
@@ -219,25 +232,14 @@ TEST(PairCache, MarginsByTravelKeepFewerPairsInADenseCrowd) {
 TEST(PairCache, ABodyGoingStraightKeepsItsFatBoxTravelTicks) {
   size_t moved[2] = {0, 0};
   for (int with_travel : {0, 1}) {
-    collision::PairCache cache;
-    std::vector<Box> boxes;
-    std::vector<uint32_t> ids;
-    std::vector<Travel> travel;
-    Pairs got, want;
-    for (int tick = 0; tick < 65; ++tick) {
-      boxes.clear(), ids.clear(), travel.clear();
-      for (uint32_t i = 0; i < 300; ++i) {
-        const Vec3 dir = i % 2 ? Vec3(1, 0, 0) : Vec3(0, -1, 0);  // east or south
-        const Vec3 p = Vec3((i % 20) * 40.0, (i / 20) * 40.0, 0) + dir * tick;
-        ids.push_back(i);
-        boxes.push_back(collision::swept_box(p - dir, p, 2.75));
-        travel.push_back({static_cast<float>(dir.x()), static_cast<float>(dir.y())});
-      }
-      cache.pairs(boxes, ids, 300, got, nullptr, with_travel ? &travel : nullptr);
-      collision::brute_pairs(boxes, want);
-      ASSERT_EQ(sorted(got), want) << "tick " << tick << (with_travel ? ", travel" : "");
+    auto driving = [](int tick, uint32_t i) {
+      const Vec3 dir = i % 2 ? Vec3(1, 0, 0) : Vec3(0, -1, 0);  // east or south
+      const Vec3 p = Vec3((i % 20) * 40.0, (i / 20) * 40.0, 0) + dir * tick;
+      return std::pair<Vec3, Vec3>(p - dir, p);
+    };
+    run_bodies(with_travel, 65, 300, 2.75, driving, [&](int tick, const collision::PairCache& cache) {
       if (tick > 0) moved[with_travel] += cache.moved();
-    }
+    });
   }
   EXPECT_LE(moved[1], 300u * 8) << "64 ticks: 7 or 8 fat boxes each by travel";
   EXPECT_GE(moved[0], 300u * 15) << "64 ticks: 16 to 21 fat boxes each by extent";
