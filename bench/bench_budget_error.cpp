@@ -21,7 +21,8 @@
 //   stored in Z order of its cells (crowd_scene.hpp): what a spatial order of the entities gives.
 //   --budget-only: the default budget's run alone (to time or profile the budgeted step).
 //   --tick-s S: the tick (default 0.1 s, TARGETS.md's step; 1/60 s: a 60 Hz node's, whose
-//   frame the default budget is sized for: each sweep a sixth as long).
+//   frame the default budget is sized for: each sweep a sixth as long; its CSV by default
+//   bench/results/crowd_budget_60hz.csv).
 // Columns (vehicles, --fixed): budget_ms, pairs (needing a narrow phase, with a verdict), lowered
 // (pairs given a tier below their exact one), contacts, truth (FCL contacts), false_pos, misses,
 // point error median / p95 (m, over the contacts both find that do not touch from the tick's
@@ -244,7 +245,10 @@ int crowd(int n, int threads, int ticks, bool spatial, bool budget_only, double 
   for (auto& s : w.ents.snapshots) s = 0;  // background traffic: nobody snapshots, drives or watches it
   std::vector<Vec3> step;
   for (size_t e = 0; e < w.ents.size(); ++e) step.push_back(w.ents.vel[e] * dt);
-  if (csv.empty()) csv = std::string(npsnet::dirs::source()) + "/bench/results/crowd_budget.csv";
+  if (csv.empty()) {  // (the 0.1 s tick's file is not written over by a run at another tick)
+    const std::string tag = dt == kTickS ? "" : std::abs(dt * 60 - 1) < 1e-6 ? "_60hz" : "_tick_" + std::to_string(dt) + "s";
+    csv = std::string(npsnet::dirs::source()) + "/bench/results/crowd_budget" + tag + ".csv";
+  }
   std::ofstream f(csv);
   f << "vehicles,threads,budget_ms,tick,ms,contacts,narrow_pairs,lowered,decided_sphere,decided_box,decided_hull,decided_mesh,"
        "entities_ms,broad_ms,pairs_ms,tiers_ms,charged_ms\n";

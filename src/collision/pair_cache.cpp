@@ -22,15 +22,21 @@ constexpr size_t kKeptAhead = 32;
 constexpr double kMaxCell = 0x1p29;   // a fat box's corners beyond this many cells: large
 }  // namespace
 
-PairCache::Fat PairCache::fat_of(const Box& b, const Travel* travel) const {
+float PairCache::ahead_ticks(uint32_t id) const {
+  uint32_t h = id * 0x9E3779B1u ^ tick_ * 0x85EBCA77u;  // (a few multiply-xorshift rounds)
+  h ^= h >> 15, h *= 0x2C1B3C6Du, h ^= h >> 12, h *= 0x297A2D39u, h ^= h >> 15;
+  return kTravelTicks * (1.0f - kAheadJitter + 2 * kAheadJitter * static_cast<float>(h >> 8) * 0x1p-24f);
+}
+
+PairCache::Fat PairCache::fat_of(const Box& b, const Travel* travel, uint32_t id) const {
   const float ext = std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]);
   if (!travel) {
     const float m = kMarginOfExtent * ext;
     return {b.lo[0] - m, b.lo[1] - m, b.hi[0] + m, b.hi[1] + m};
   }
   // Ahead: where the box goes in the next ticks if the body keeps going (a NaN travel: nowhere).
-  const float m = kMarginMinOfExtent * ext, most = kAheadOfExtent * ext;
-  const float ax = std::clamp(kTravelTicks * travel->x, -most, most), ay = std::clamp(kTravelTicks * travel->y, -most, most);
+  const float m = kMarginMinOfExtent * ext, most = kAheadOfExtent * ext, k = ahead_ticks(id);
+  const float ax = std::clamp(k * travel->x, -most, most), ay = std::clamp(k * travel->y, -most, most);
   return {b.lo[0] - m + std::min(0.0f, ax), b.lo[1] - m + std::min(0.0f, ay), b.hi[0] + m + std::max(0.0f, ax),
           b.hi[1] + m + std::max(0.0f, ay)};
 }
@@ -67,14 +73,14 @@ void PairCache::build(const std::vector<Box>& boxes) {
   double sum = 0;
   size_t counted = 0;
   for (const Box& b : boxes) {
-    const Fat f = fat_of(b, nullptr);
+    const Fat f = fat_of(b, nullptr, 0);
     const double e = std::max(f.hix - f.lox, f.hiy - f.loy);
     if (std::isfinite(e)) sum += e, ++counted;
   }
   const double cap = counted ? 4 * sum / counted : 0;
   double ext = 0;
   for (const Box& b : boxes) {
-    const Fat f = fat_of(b, nullptr);
+    const Fat f = fat_of(b, nullptr, 0);
     const double e = std::max(f.hix - f.lox, f.hiy - f.loy);
     if (e <= cap) ext = std::max(ext, e);
   }
@@ -197,7 +203,7 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
       if (state_[id] == kIn && b.lo[0] >= was.lox && b.lo[1] >= was.loy && b.hi[0] <= was.hix && b.hi[1] <= was.hiy)
         continue;
       gone_moved_[id] = tick_;
-      const Fat f = fat_of(b, travel ? &(*travel)[i] : nullptr);
+      const Fat f = fat_of(b, travel ? &(*travel)[i] : nullptr, id);
       const Range r = ordinary(f) ? cells_of(f) : Range{0, 0, -1, -1};
       mv.push_back(Moved{id, f, r});
       const Range& q = range_[id];

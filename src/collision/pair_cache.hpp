@@ -12,14 +12,16 @@
 //    hashed grid. The margin: kMarginOfExtent of the box's larger extent all round; given each
 //    body's travel this tick (`travel`, m: the detector's sweep, end less start), kTravelTicks
 //    of that travel ahead (at most kAheadOfExtent of the extent) and kMarginMinOfExtent all
-//    round. A body going straight then keeps its fat box kTravelTicks ticks, a slow one in a
-//    crowd keeps a thin one (fewer pairs kept that do not overlap). A body whose box leaves its fat box (or that is new,
-//    or gone) "moves": its fat box is made again and its pairs found again, from the grid; the
-//    others keep theirs. The kept pairs are those whose fat boxes overlap; a tick reports the ones
-//    whose boxes overlap (when no body moved or went, the kept pairs are not walked to drop
-//    any). A moved body that stays in the same cells touches no bucket. At 100,000
-//    vehicles driving (bench_tick_scaling), about a fifth move a tick, a tenth of those to other
-//    cells: 13 M instructions a tick where MovingGrid takes 30 M.
+//    round. A body going straight then keeps its fat box about kTravelTicks ticks (ahead_ticks:
+//    a few more or fewer by a hash, so that bodies set off together do not renew together), a
+//    slow one in a crowd keeps a thin one (fewer pairs kept that do not overlap). The grid's
+//    cell is sized by the margin all round, whatever the travel. A body whose box leaves its fat box (or that is
+//    new, or gone) "moves": its fat box is made again and its pairs found again, from the grid;
+//    the others keep theirs. The kept pairs are those whose fat boxes overlap; a tick reports the
+//    ones whose boxes overlap (when no body moved or went, the kept pairs are not walked to drop
+//    any). A moved body that stays in the same cells touches no bucket. At 100,000 vehicles
+//    driving (bench_tick_scaling, 0.1 s ticks), about a tenth move a tick by travel (a sixth by
+//    the extent alone).
 //  * Bodies whose fat box would span more than kMaxCellsPerAxis cells a side (a round in flight),
 //    or is not finite, are "large": tested against every box each tick, as MovingGrid does its
 //    large boxes.
@@ -48,7 +50,10 @@ class PairCache {
  public:
   // A fat box's margins, fractions of its box's larger extent (above), and ticks of travel.
   static constexpr float kMarginOfExtent = 0.5f, kMarginMinOfExtent = 0.125f, kAheadOfExtent = 2.0f;
-  static constexpr float kTravelTicks = 8.0f;
+  // Ticks of travel ahead: kTravelTicks, times 1 -/+ kAheadJitter by a hash of the body and the
+  // call (ahead_ticks): bodies that set off together would otherwise renew their fat boxes
+  // together every kTravelTicks ticks, whatever their speeds.
+  static constexpr float kTravelTicks = 8.0f, kAheadJitter = 0.25f;
   struct Travel {  // a body's x-y travel over this tick (m)
     float x, y;
   };
@@ -94,7 +99,8 @@ class PairCache {
   };
   enum State : uint8_t { kOut = 0, kIn = 1, kLarge = 2 };
 
-  Fat fat_of(const Box& b, const Travel* travel) const;  // (travel null: kMarginOfExtent all round)
+  Fat fat_of(const Box& b, const Travel* travel, uint32_t id) const;  // (travel null: kMarginOfExtent all round)
+  float ahead_ticks(uint32_t id) const;  // body id's ticks ahead in this call
   Range cells_of(const Fat& f) const;
   uint32_t bucket_of(int32_t x, int32_t y) const;
   bool ordinary(const Fat& f) const;

@@ -226,11 +226,12 @@ TEST(PairCache, MarginsByTravelKeepFewerPairsInADenseCrowd) {
   EXPECT_LT(kept[1] * 2, kept[0]) << kept[1] << " kept pairs by travel, " << kept[0] << " by extent";
 }
 
-// Bodies driving straight (1 m a tick, 6.5 m boxes) keep their fat boxes kTravelTicks ticks: 8
-// ticks of travel ahead (8 m) against the extent's half all round (3.25 m: 3 or 4 ticks); the
-// pairs are brute force's either way.
+// Bodies driving straight (1 m a tick, 6.5 m boxes), all set off on the same tick, keep their fat
+// boxes about kTravelTicks ticks: 6 to 10 ticks of travel ahead (6-10 m) against the extent's
+// half all round (3.25 m: 3 or 4 ticks); and they do not renew them all on the same ticks (by
+// travel, the most in one tick is a third of them). The pairs are brute force's either way.
 TEST(PairCache, ABodyGoingStraightKeepsItsFatBoxTravelTicks) {
-  size_t moved[2] = {0, 0};
+  size_t moved[2] = {0, 0}, most[2] = {0, 0};
   for (int with_travel : {0, 1}) {
     auto driving = [](int tick, uint32_t i) {
       const Vec3 dir = i % 2 ? Vec3(1, 0, 0) : Vec3(0, -1, 0);  // east or south
@@ -238,10 +239,12 @@ TEST(PairCache, ABodyGoingStraightKeepsItsFatBoxTravelTicks) {
       return std::pair<Vec3, Vec3>(p - dir, p);
     };
     run_bodies(with_travel, 65, 300, 2.75, driving, [&](int tick, const collision::PairCache& cache) {
-      if (tick > 0) moved[with_travel] += cache.moved();
+      if (tick > 0) moved[with_travel] += cache.moved(), most[with_travel] = std::max(most[with_travel], cache.moved());
     });
   }
-  EXPECT_LE(moved[1], 300u * 8) << "64 ticks: 7 or 8 fat boxes each by travel";
+  EXPECT_LE(moved[1], 300u * 9) << "64 ticks: about 8 fat boxes each by travel";
   EXPECT_GE(moved[0], 300u * 15) << "64 ticks: 16 to 21 fat boxes each by extent";
-  std::printf("fat boxes made again in 64 ticks, 300 bodies: %zu by travel, %zu by extent\n", moved[1], moved[0]);
+  EXPECT_LE(most[1], 100u) << "the renewals spread over the ticks";
+  std::printf("fat boxes made again in 64 ticks, 300 bodies: %zu by travel (at most %zu in a tick), %zu by extent\n",
+              moved[1], most[1], moved[0]);
 }
