@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/prefetch.hpp"
+#include "world/random.hpp"
 
 namespace npsnet::collision {
 
@@ -23,9 +24,8 @@ constexpr double kMaxCell = 0x1p29;   // a fat box's corners beyond this many ce
 }  // namespace
 
 float PairCache::ahead_ticks(uint32_t id) const {
-  uint32_t h = id * 0x9E3779B1u ^ tick_ * 0x85EBCA77u;  // (a few multiply-xorshift rounds)
-  h ^= h >> 15, h *= 0x2C1B3C6Du, h ^= h >> 12, h *= 0x297A2D39u, h ^= h >> 15;
-  return kTravelTicks * (1.0f - kAheadJitter + 2 * kAheadJitter * static_cast<float>(h >> 8) * 0x1p-24f);
+  world::Rng hash((uint64_t{id} << 32) | tick_);  // (splitmix64 of the body and the call: one draw)
+  return kTravelTicks * (1.0f - kAheadJitter + 2 * kAheadJitter * static_cast<float>(hash.unit()));
 }
 
 PairCache::Fat PairCache::fat_of(const Box& b, const Travel* travel, uint32_t id) const {
