@@ -182,7 +182,7 @@ class Detector {
   // Entity e was put somewhere else between ticks (a restored checkpoint): its next tick starts
   // from the orientation it has then, not from its last tick's (no turn over the move).
   void forget_turn(int e) {
-    if (e >= 0 && static_cast<size_t>(e) < prev_ok_.size()) prev_ok_[e] = 0;
+    if (e >= 0 && static_cast<size_t>(e) < turn_.size()) turn_[e].ok = 0;
   }
   const std::vector<TierChoice>& tier_choices() const { return choices_; }
   // One pair of entities by this detector's method and tier, outside the episode bookkeeping
@@ -259,11 +259,16 @@ class Detector {
   std::vector<uint64_t> touching_, previous_;  // pair keys in contact this / last tick
   std::vector<uint64_t> sort_scratch_;         // core::radix_sort's
   // Where each entity's episodes with moving partners lie in previous_: the keys whose lower
-  // index is e are previous_[lo_start_[e] .. lo_start_[e + 1]) (in no order), the fixed
-  // contacts' keys after the last bucket (sorted). Made each tick when previous_ holds
-  // kEpisodeIndexMin keys or more (else empty and previous_ sorted: a binary search is as
-  // quick), so that a pair's look-up reads two lines, which prefetch_pair asks for ahead.
+  // index is e are among previous_[lo_start_[b] .. lo_start_[b + 1]) (in no order), b =
+  // episode_bucket(e), e >> kEpisodeBucketShift (the bucket of 4 entities); the fixed contacts' keys
+  // after the last bucket (sorted). Made each tick when previous_ holds kEpisodeIndexMin keys or
+  // more (else empty and previous_ sorted: a binary search is as quick), so that a pair's
+  // look-up reads two lines, which prefetch_pair asks for ahead. (Four entities a bucket: the
+  // index a quarter of the entities, 100 KB at 100,000, made in a quarter of the passes over
+  // it; a bucket in the crowd holds 2-3 keys, on one line.)
   static constexpr size_t kEpisodeIndexMin = 4096;
+  static constexpr int kEpisodeBucketShift = 2;
+  static size_t episode_bucket(size_t lo) { return lo >> kEpisodeBucketShift; }
   std::vector<uint32_t> lo_start_;
   void index_episodes(size_t n);          // n: entity slots
   bool was_touching(int a, int b) const;  // moving pair (a, b) in contact last tick
@@ -323,15 +328,28 @@ class Detector {
   uint64_t ranked_lineage_ = 0;
   std::vector<uint32_t> made_;
   std::vector<Shape> shapes_;           // per model index
-  // Turning during the tick (per entity slot): the orientation (heading, pitch, roll, deg) at the
-  // start of this tick = the end of the last one when the slot held the same kind and was active
-  // then (else the end's: no turn); prev_* keep this tick's end for the next.
+  // Per entity slot, one cache line, what the entity pass keeps from tick to tick:
+  //  * turning during the tick: the orientation (heading, pitch, roll, deg) at the start of this
+  //    tick = the end of the last one when the slot held the same kind and was active then (else
+  //    the end's: no turn); prev, kind, ok keep this tick's end for the next;
+  //  * the model's centre turned into the local frame, pose_rotation(prev) * centre (world::
+  //    entity_centre less the position): made again only when the orientation or the centre
+  //    (its kind's, for its state) changes bits, so a vehicle going straight on a plane of the
+  //    terrain takes no sines (the same bits as making it each tick: a pure function's memo).
   using Hpr = std::array<float, 3>;
-  std::vector<Hpr> start_hpr_, prev_hpr_;
-  std::vector<int16_t> prev_kind_;
-  std::vector<uint8_t> prev_ok_;
-  // world::entity_centre(w, e) at the end of the tick, e's heading direction from memo().
-  Vec3 centre_end(const world::World& w, int e);
+  struct alignas(64) Turn {
+    Hpr start{}, prev{};
+    int16_t kind = -1;
+    uint8_t ok = 0;      // active last tick, prev its end
+    uint8_t turned = 0;  // offset is pose_rotation(prev) * centre
+    Vec3f centre{0, 0, 0};
+    Vec3 offset{0, 0, 0};
+  };
+  static_assert(sizeof(Turn) == 64);
+  std::vector<Turn> turn_;
+  // world::entity_centre(w, e) at the end of the tick (e's heading direction from memo()), by
+  // way of turn_[e]'s offset; prev is this tick's orientation after it.
+  Vec3 centre_end(const world::World& w, int e, Turn& t);
   core::HeadingMemo own_memo_, *shared_memo_ = nullptr;
   core::HeadingMemo& memo() { return shared_memo_ ? *shared_memo_ : own_memo_; }
   Motion motion(const world::World& w, int e) const;  // entity e's motion over this tick

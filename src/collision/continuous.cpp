@@ -66,8 +66,8 @@ bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
     return true;
   }
   prepare_shapes(w);
-  if (start_hpr_.size() < ents.size()) start_hpr_.resize(ents.size());
-  for (int e : {a, b}) start_hpr_[e] = Hpr{ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]};  // no turn known
+  if (turn_.size() < ents.size()) turn_.resize(ents.size());
+  for (int e : {a, b}) turn_[e].start = Hpr{ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]};  // no turn known
   Vec3 c0[2], c1[2];
   double rs[2], rb[2];
   SweptTags t[2]{};  // (the tier's part: rank and required are not asked here)
@@ -89,11 +89,15 @@ bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
   return hit;
 }
 
-Vec3 Detector::centre_end(const world::World& w, int e) {
+Vec3 Detector::centre_end(const world::World& w, int e, Turn& t) {
   const auto& ents = w.ents;
-  const world::Kind& k = w.kinds[ents.kind[e]];
-  return ents.pos[e] + world::pose_rotation(memo().dir(static_cast<size_t>(e), ents.heading_deg[e]), ents.pitch_deg[e], ents.roll_deg[e]) *
-                           k.centre_by_state[ents.state[e]].cast<double>();
+  const Hpr now{ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]};
+  const Vec3f& c = w.kinds[ents.kind[e]].centre_by_state[ents.state[e]];
+  if (!t.turned || !same_bits(t.prev, now) || std::memcmp(t.centre.data(), c.data(), sizeof(float) * 3) != 0) {
+    t.offset = world::pose_rotation(memo().dir(static_cast<size_t>(e), now[0]), now[1], now[2]) * c.cast<double>();
+    t.centre = c, t.prev = now, t.turned = 1;
+  }
+  return ents.pos[e] + t.offset;
 }
 
 void Detector::rank_ids(const world::World& w) {
@@ -223,17 +227,19 @@ void Detector::detect_continuous(const world::World& w) {
   const int n = static_cast<int>(ents.size());
   const double dt = opt_.dt_s;
   // Active entities, their sweeps and swept boxes. Reject non-finite input before any use.
-  order_.clear();
-  start_hpr_.resize(n), prev_hpr_.resize(n), prev_kind_.resize(n, -1), prev_ok_.resize(n, 0);
+  turn_.resize(n);
   memo().resize(n);
+  // (Every slot written, the count advanced only for an active one: no push_back's size stored
+  // per entity, no branch but for the rare inactive one.)
+  order_.resize(n);
+  size_t m = 0;
   for (int e = 0; e < n; ++e) {
-    if (!ents.active[e]) {
-      prev_ok_[e] = 0;
-      continue;
-    }
-    order_.push_back(static_cast<uint32_t>(e));
+    const bool on = ents.active[e] != 0;
+    order_[m] = static_cast<uint32_t>(e);
+    m += on;
+    if (!on) turn_[e].ok = 0;
   }
-  const size_t m = order_.size();
+  order_.resize(m);
   swept_.resize(m), tags_.resize(m), boxes_.resize(m), travel_.resize(m);
 
   // Fixed objects: the world's grid (world/fixed_grid.hpp) lists each by its reach; each is
@@ -281,7 +287,17 @@ void Detector::detect_continuous(const world::World& w) {
       const int e = static_cast<int>(order_[i]);
       check_finite(ents, e);
       Swept& sw = swept_[i];
-      sw.c1 = centre_end(w, e);
+      Turn& tu = turn_[e];
+      // Turning: the start orientation is the last tick's end (same kind, active then), read
+      // before centre_end makes prev this tick's end. (Each written only when its bits change: a
+      // vehicle parked, or going straight on the level, stores nothing here, and its line is not
+      // written back.)
+      const Hpr now{ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]};
+      const Hpr& start = tu.ok && tu.kind == ents.kind[e] ? tu.prev : now;
+      if (!same_bits(tu.start, start)) tu.start = start;
+      if (tu.kind != ents.kind[e]) tu.kind = ents.kind[e];
+      if (!tu.ok) tu.ok = 1;
+      sw.c1 = centre_end(w, e, tu);
       sw.c0 = sw.c1 - ents.vel[e] * dt;
       if (!finite(sw.c0))
         throw std::invalid_argument("collision: entity '" + ents.id[e] + "': velocity * dt overflows");
@@ -292,21 +308,12 @@ void Detector::detect_continuous(const world::World& w) {
       tags_[i] = SweptTags{ranks[e], top, kd.mobility == world::Mobility::Munition, ents.driven[e] || ents.snapshots[e]};
       const Shape& s = shapes_[kd.models[ents.state[e]]];
       sw.r_bound = top == Tier::Sphere ? sw.r_sphere : std::max(sw.r_sphere, static_cast<float>(s.bound_radius * 1.0001 + 1e-3));
-      // Turning: the start orientation is the last tick's end (same kind, active then).
-      // (Each written only when its bits change: a vehicle parked, or going straight on the
-      // level, stores nothing here, and its lines are not written back.)
-      const Hpr now{ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]};
-      const Hpr& start = prev_ok_[e] && prev_kind_[e] == ents.kind[e] ? prev_hpr_[e] : now;
-      if (!same_bits(start_hpr_[e], start)) start_hpr_[e] = start;
-      if (!same_bits(prev_hpr_[e], now)) prev_hpr_[e] = now;
-      if (prev_kind_[e] != ents.kind[e]) prev_kind_[e] = ents.kind[e];
-      if (!prev_ok_[e]) prev_ok_[e] = 1;
       // The model's centre turns about its origin: it strays from the straight sweep by at most
       // turn * |centre| (the turn bounded by the sum of the three angles' changes).
-      if (top != Tier::Sphere && start_hpr_[e] != now) {
+      if (top != Tier::Sphere && tu.start != now) {
         double turn = 0;
         for (int k = 0; k < 3; ++k) {
-          const double a = double(now[k]) - start_hpr_[e][k];  // within a half turn remainder gives a itself
+          const double a = double(now[k]) - tu.start[k];  // within a half turn remainder gives a itself
           turn += std::abs(std::abs(a) < 180 ? a : std::remainder(a, 360.0));
         }
         sw.r_bound += static_cast<float>(turn * kPi / 180 * s.sphere_centre.norm());

@@ -55,25 +55,27 @@ void Detector::detect(const world::World& w, std::vector<Contact>& out) {
 uint64_t contact_key(int a, int b, bool fixed) { return pair_key(a, b, fixed); }
 
 void Detector::index_episodes(size_t n) {
-  // A counting sort of the moving pairs' keys by lower index (one pass to count, one to place:
-  // each bucket keeps last tick's order), then the fixed contacts' keys (top bit), sorted.
-  lo_start_.assign(n + 2, 0);  // bucket n: lower indices past this tick's entities (none asked)
+  // A counting sort of the moving pairs' keys by the bucket of their lower index (one pass to
+  // count, one to place: each bucket keeps last tick's order), then the fixed contacts' keys (top
+  // bit), sorted. Bucket b counted at b + 2: after the running sums lo_start_[b + 1] is where b
+  // starts, and placing moves it on to where b + 1 starts, which leaves lo_start_[b] at b's start.
+  const size_t buckets = episode_bucket(n) + 1;  // the last: lower indices from n on (none asked)
+  lo_start_.assign(buckets + 2, 0);
+  auto bucket = [n](uint64_t key) { return episode_bucket(std::min<uint64_t>((key >> 31) & 0xffffffffu, n)); };
   size_t fixed = 0;
   for (const uint64_t key : previous_) {
     if (key >> 63) ++fixed;
-    else ++lo_start_[std::min<uint64_t>((key >> 31) & 0xffffffffu, n) + 1];
+    else ++lo_start_[bucket(key) + 2];
   }
-  for (size_t e = 1; e <= n + 1; ++e) lo_start_[e] += lo_start_[e - 1];  // where each bucket starts
+  for (size_t b = 1; b < lo_start_.size(); ++b) lo_start_[b] += lo_start_[b - 1];
   const size_t moving = previous_.size() - fixed;
   sort_scratch_.resize(previous_.size());
   size_t f = moving;
   for (const uint64_t key : previous_) {
     if (key >> 63) sort_scratch_[f++] = key;
-    else sort_scratch_[lo_start_[std::min<uint64_t>((key >> 31) & 0xffffffffu, n)]++] = key;
+    else sort_scratch_[lo_start_[bucket(key) + 1]++] = key;
   }
-  // (placing moved each start to its bucket's end, the next one's start)
-  std::copy_backward(lo_start_.begin(), lo_start_.begin() + static_cast<std::ptrdiff_t>(n) + 1, lo_start_.begin() + static_cast<std::ptrdiff_t>(n) + 2);
-  lo_start_[0] = 0;
+  lo_start_.pop_back();  // lo_start_[buckets]: the moving keys' end, where the fixed keys start
   std::sort(sort_scratch_.begin() + static_cast<std::ptrdiff_t>(moving), sort_scratch_.end());
   previous_.swap(sort_scratch_);
 }
@@ -81,7 +83,7 @@ void Detector::index_episodes(size_t n) {
 bool Detector::was_touching(int a, int b) const {
   const uint64_t key = pair_key(a, b, false);
   if (lo_start_.empty()) return std::binary_search(previous_.begin(), previous_.end(), key);
-  const size_t lo = static_cast<size_t>(std::min(a, b));
+  const size_t lo = episode_bucket(static_cast<size_t>(std::min(a, b)));
   for (uint32_t k = lo_start_[lo], end = lo_start_[lo + 1]; k < end; ++k)
     if (previous_[k] == key) return true;
   return false;

@@ -23,7 +23,7 @@ Motion Detector::motion(const world::World& w, int e) const {
   m.end.rot = world::pose_rotation(ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]);
   m.end.pos = ents.pos[e];
   m.move = ents.vel[e] * opt_.dt_s;  // displacement over the tick
-  const Hpr& s = start_hpr_[e];
+  const Hpr& s = turn_[e].start;
   m.rot0 = s == Hpr{ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]} ? m.end.rot
                                                                                 : world::pose_rotation(s[0], s[1], s[2]);
   return m;
@@ -129,7 +129,8 @@ void Detector::prefetch_pair(const world::World& w, size_t p, int stage) const {
     core::prefetch(&swept_[i]), core::prefetch(&swept_[j]), core::prefetch(&tags_[i]), core::prefetch(&tags_[j]);
     return;
   }
-  const uint32_t ea = swept_[i].e, eb = swept_[j].e, lo = std::min(ea, eb);
+  const uint32_t ea = swept_[i].e, eb = swept_[j].e;
+  const size_t lo = episode_bucket(std::min(ea, eb));
   if (stage == 1) {
     core::prefetch_object(&w.ents.vel[ea]), core::prefetch_object(&w.ents.vel[eb]);  // a pair left to allocate_tiers: its closing speed
     if (!lo_start_.empty()) core::prefetch(&lo_start_[lo]);

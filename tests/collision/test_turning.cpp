@@ -145,3 +145,37 @@ TEST(Turning, AVehicleTurningNearButClearOfAnObjectDoesNotHitIt) {
     }
   }
 }
+
+// The entity pass keeps each entity's model centre turned into the local frame from tick to tick
+// (Detector::Turn) and makes it again only when the orientation or the centre changes. Sphere
+// tier, still vehicles, a parked hmmwv (centre 0.9 m up, r 2.32 m) at the origin of the frame:
+//  * an M1A1 (centre 0.975 m ahead of its origin, r 4.77 m) 7.5 m north of it, facing north: its
+//    sphere's centre 8.5 m from the hmmwv's, clear; the tick it faces south, 6.5 m: the contact;
+//  * a second hmmwv 5 m east of it: clear; the tick it is wrecked (its wreck's centre 0.71 m to
+//    its right, further off, and r 2.90 m), 5.7 m apart against 5.22: still clear. With the
+//    intact centre kept, 5.0 m: a false contact.
+TEST(Turning, TheCentreKeptFromTickToTickFollowsOrientationAndState) {
+  for (const bool wreck : {false, true}) {
+    SCOPED_TRACE(wreck ? "wrecked" : "turned");
+    auto w = test::flat_world();
+    const int b = test::add_vehicle(w, "parked", "hmmwv", 1000, 1000, 0, 0);
+    const int a = wreck ? test::add_vehicle(w, "a", "hmmwv", 1005, 1000, 0, 0) : test::add_vehicle(w, "a", "m1a1", 1000, 1007.5, 0, 0);
+    w.ents.vel[a] = w.ents.vel[b] = Vec3::Zero();
+    test::index_fixed(w);
+    const world::Kind& ka = w.kinds[w.ents.kind[a]];
+    collision::Detector d(collision::options_from("continuous", "sphere", 0.1));
+    std::vector<collision::Contact> out;
+    for (int tick = 0; tick < 3; ++tick) {
+      d.detect(w, out);
+      EXPECT_TRUE(out.empty()) << tick;
+    }
+    if (wreck) {
+      w.ents.state[a] = static_cast<uint8_t>(ka.centre_by_state.size() - 1);
+      ASSERT_GT(ka.centre_by_state.back().x(), 0.5f) << "the wreck's centre lies to its right (kinds data)";
+    } else {
+      w.ents.heading_deg[a] = 180;
+    }
+    d.detect(w, out);
+    EXPECT_EQ(out.size(), wreck ? 0u : 1u);
+  }
+}
