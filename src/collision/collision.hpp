@@ -232,7 +232,7 @@ class Detector {
   void fixed_contacts(const world::World& w, size_t i, Lane& L);
   void pair_contact(const world::World& w, size_t p, Lane& L);
   // A hint (core/prefetch.hpp): the cache lines pair_contact(p) reads, in three stages, each
-  // reading what the one before asked for: 0 the two bodies' Swept and tags; 1 their velocities
+  // reading what the one before asked for: 0 the two bodies' Swept lines (tags in them); 1 their velocities
   // (a pair's closing speed when it is left to allocate_tiers) and lo_start_ of the lower entity
   // index; 2 the episode keys lo_start_ points to.
   void prefetch_pair(const world::World& w, size_t p, int stage) const;
@@ -277,27 +277,35 @@ class Detector {
   DetectStats stats_;
   PassTimes times_;
   // continuous
+  // What the tiers ask of an entity, in 4 bytes of its Swept line.
+  struct SweptTags {
+    static constexpr int kRankBits = 26;  // detect_continuous throws past 2^26 entities
+    uint32_t rank : kRankBits;  // rank_.ranks()[e]
+    uint32_t top_ : 3;          // the tier it may be asked for: the forced tier, else its kind's top
+    uint32_t munition : 1;
+    uint32_t required : 1;      // driven by a player or snapshotted: its pairs get their exact tier
+    uint32_t owned : 1;         // world.ents.owner[e] >= 0 (a munition's shooter)
+    Tier top() const { return static_cast<Tier>(top_); }
+    static SweptTags make(uint32_t rank, Tier top, bool munition, bool required, bool owned) {
+      SweptTags t;
+      t.rank = rank, t.top_ = static_cast<uint32_t>(top), t.munition = munition, t.required = required, t.owned = owned;
+      return t;
+    }
+  };
   // Each active entity's sweep, by its slot i (order_[i]), in one cache line: all that a moving
-  // pair reads of each of its bodies but its tags (the pairs come in no order, so each body
-  // costs the lines it spans; it was 10 lines in 8 arrays).
+  // pair reads of each of its bodies (the pairs come in no order, so each body costs the lines
+  // it spans; it was 10 lines in 8 arrays, then 2: the tags had a line of their own).
   struct alignas(64) Swept {
     Vec3 c0, c1;              // sphere centre at the start and end of the tick
     float r_sphere, r_bound;  // thesis sphere radius; bound of the model (true radius)
     uint32_t e;               // its entity index
-    int32_t owner;            // world.ents.owner[e] (a munition's shooter, else -1)
+    SweptTags tags;
   };
   static_assert(sizeof(Swept) == 64);
-  struct SweptTags {
-    uint32_t rank;  // rank_.ranks()[e]
-    Tier top;       // the tier it may be asked for: the forced tier, else its kind's top
-    bool munition;
-    bool required;  // driven by a player or snapshotted: its pairs get their exact tier
-  };
   std::vector<Swept> swept_;
-  std::vector<SweptTags> tags_;
   // The tier a moving pair needs: the sphere when either is a munition, else the lower top tier.
   static Tier pair_tier(const SweptTags& a, const SweptTags& b) {
-    return a.munition || b.munition ? Tier::Sphere : std::min(a.top, b.top);
+    return a.munition || b.munition ? Tier::Sphere : std::min(a.top(), b.top());
   }
   std::vector<Box> boxes_;              // swept boxes
   std::vector<PairCache::Travel> travel_;  // each sweep's x-y travel (m): PairCache's margins

@@ -70,14 +70,14 @@ bool Detector::test_pair(const world::World& w, int a, int b, Contact& k) {
   for (int e : {a, b}) turn_[e].start = Hpr{ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]};  // no turn known
   Vec3 c0[2], c1[2];
   double rs[2], rb[2];
-  SweptTags t[2]{};  // (the tier's part: rank and required are not asked here)
+  SweptTags t[2];  // (the tier's part: rank and required are not asked here)
   for (int s = 0; s < 2; ++s) {
     const int e = s ? b : a;
     c1[s] = world::entity_centre(w, e);
     c0[s] = c1[s] - ents.vel[e] * opt_.dt_s;
     rs[s] = world::entity_radius(w, e);
     const Tier top = opt_.tier != Tier::Auto ? opt_.tier : top_tier(w.kinds[ents.kind[e]]);
-    t[s].top = top, t[s].munition = w.is_munition(e);
+    t[s] = SweptTags::make(0, top, w.is_munition(e), false, false);
     const Shape& sh = shapes_[w.kinds[ents.kind[e]].models[ents.state[e]]];
     rb[s] = top == Tier::Sphere ? rs[s] : std::max(rs[s], sh.bound_radius * 1.0001 + 1e-3);
   }
@@ -141,8 +141,8 @@ constexpr size_t kEntityGrain = 128, kPairGrain = 256, kPendingGrain = 4;
 constexpr int kEntityChunksPerThread = 4, kPairChunksPerThread = 4, kPendingChunksPerThread = 8;
 // The pairs lie in no spatial order: what a pair reads of its two bodies is asked of the cache
 // kPairAhead pairs early (prefetch_pair), so their misses overlap instead of stalling in turn:
-// its bodies' Swept lines and tags twice as far ahead, their velocities and lo_start_
-// kPairAhead, the episode keys half as far (each stage reads what the one before asked for).
+// its bodies' Swept lines twice as far ahead, their velocities and lo_start_ kPairAhead, the
+// episode keys half as far (each stage reads what the one before asked for).
 constexpr size_t kPairAhead = 8, kPendingAhead = 4;
 // The entity pass writes each entity's Swept, tags and box, which the pair loop and the broad
 // phase read last tick on whichever thread had the pair: asked for kEntityAhead entities early.
@@ -164,7 +164,7 @@ void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
     const Tier tier = opt_.tier != Tier::Auto ? opt_.tier : std::min(top_tier(ke), top_tier(ko));
     const Vec3 fc = world::fixed_centre(w, o);  // live: craters re-seat objects
     const double rs = world::fixed_radius(w, o);
-    const bool sphere = tier == Tier::Sphere || tags_[i].munition;
+    const bool sphere = tier == Tier::Sphere || sw.tags.munition;
     const Trace h = sphere_sweep(sw.c0, sw.c1, sphere ? sw.r_sphere : sw.r_bound, fc, fc,
                                  sphere ? rs : std::max<double>(rs, r));
     ++L.stats.sweep_pairs;
@@ -191,7 +191,7 @@ void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
       Pending& q = L.pending.emplace_back();
       q.a = e, q.b = static_cast<int>(o), q.b_fixed = true, q.exact = tier, q.t_in = h.fraction, q.t_out = h.exit_fraction;
       q.ia = static_cast<uint32_t>(i), q.ib = static_cast<uint32_t>(o), q.closing = ents.vel[e].norm();
-      q.rank_a = tags_[i].rank, q.rank_b = fixed_rank_.ranks()[o], q.required = tags_[i].required;
+      q.rank_a = sw.tags.rank, q.rank_b = fixed_rank_.ranks()[o], q.required = sw.tags.required;
       return;
     } else if (!narrow(w, e, static_cast<int>(o), true, tier, h.fraction, h.exit_fraction, k, L)) {
       return;
@@ -240,7 +240,9 @@ void Detector::detect_continuous(const world::World& w) {
     if (!on) turn_[e].ok = 0;
   }
   order_.resize(m);
-  swept_.resize(m), tags_.resize(m), boxes_.resize(m), travel_.resize(m);
+  if (static_cast<uint64_t>(n) >> SweptTags::kRankBits)
+    throw std::length_error("collision: more than " + std::to_string((1u << SweptTags::kRankBits) - 1) + " entities");
+  swept_.resize(m), boxes_.resize(m), travel_.resize(m);
 
   // Fixed objects: the world's grid (world/fixed_grid.hpp) lists each by its reach; each is
   // tested here by its sphere (or its models' bound, when a tier above the sphere may be asked),
@@ -282,7 +284,6 @@ void Detector::detect_continuous(const world::World& w) {
     for (size_t i = i0; i < i1; ++i) {
       if (i + kEntityAhead < i1) {  // lines the other thread read last tick, to be written
         core::prefetch_write(&swept_[i + kEntityAhead]), core::prefetch_write(&boxes_[i + kEntityAhead]);
-        core::prefetch_write(&tags_[i + kEntityAhead]);
       }
       const int e = static_cast<int>(order_[i]);
       check_finite(ents, e);
@@ -302,10 +303,11 @@ void Detector::detect_continuous(const world::World& w) {
       if (!finite(sw.c0))
         throw std::invalid_argument("collision: entity '" + ents.id[e] + "': velocity * dt overflows");
       sw.r_sphere = static_cast<float>(world::entity_radius(w, e));
-      sw.e = static_cast<uint32_t>(e), sw.owner = ents.owner[e];
+      sw.e = static_cast<uint32_t>(e);
       const world::Kind& kd = w.kinds[ents.kind[e]];
       const Tier top = opt_.tier != Tier::Auto ? opt_.tier : top_tier(kd);
-      tags_[i] = SweptTags{ranks[e], top, kd.mobility == world::Mobility::Munition, ents.driven[e] || ents.snapshots[e]};
+      sw.tags = SweptTags::make(ranks[e], top, kd.mobility == world::Mobility::Munition, ents.driven[e] || ents.snapshots[e],
+                                ents.owner[e] >= 0);
       const Shape& s = shapes_[kd.models[ents.state[e]]];
       sw.r_bound = top == Tier::Sphere ? sw.r_sphere : std::max(sw.r_sphere, static_cast<float>(s.bound_radius * 1.0001 + 1e-3));
       // The model's centre turns about its origin: it strays from the straight sweep by at most

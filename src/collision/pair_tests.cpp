@@ -126,7 +126,7 @@ bool Detector::pair_hit(const world::World& w, int a, int b, const Trace& h, Tie
 void Detector::prefetch_pair(const world::World& w, size_t p, int stage) const {
   const auto [i, j] = pairs_[p];
   if (stage == 0) {
-    core::prefetch(&swept_[i]), core::prefetch(&swept_[j]), core::prefetch(&tags_[i]), core::prefetch(&tags_[j]);
+    core::prefetch(&swept_[i]), core::prefetch(&swept_[j]);
     return;
   }
   const uint32_t ea = swept_[i].e, eb = swept_[j].e;
@@ -144,9 +144,9 @@ void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
   const Swept* sa = &swept_[i];
   const Swept* sb = &swept_[j];
   int a = static_cast<int>(sa->e), b = static_cast<int>(sb->e);
-  if (sa->owner == b || sb->owner == a) return;  // a round never meets its shooter
-  const SweptTags* ta = &tags_[i];
-  const SweptTags* tb = &tags_[j];
+  const SweptTags* ta = &sa->tags;
+  const SweptTags* tb = &sb->tags;
+  if ((ta->owned && w.ents.owner[a] == b) || (tb->owned && w.ents.owner[b] == a)) return;  // a round never meets its shooter
   if (ta->munition && tb->munition) return;
   size_t ia = i, ib = j;
   // Canonical order by id rank, so that the answer does not depend on where entities are stored.
