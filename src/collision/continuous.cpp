@@ -165,7 +165,7 @@ void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
     const Vec3 fc = world::fixed_centre(w, o);  // live: craters re-seat objects
     const double rs = world::fixed_radius(w, o);
     const bool sphere = tier == Tier::Sphere || sw.tags.munition;
-    const Trace h = sphere_sweep(sw.c0, sw.c1, sphere ? sw.r_sphere : sw.r_bound, fc, fc,
+    const Trace h = sphere_sweep_checked(sw.c0, sw.c1, sphere ? sw.r_sphere : sw.r_bound, fc, fc,
                                  sphere ? rs : std::max<double>(rs, r));
     ++L.stats.sweep_pairs;
     if (!h.hit) {

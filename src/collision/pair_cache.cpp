@@ -196,7 +196,6 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
       // (slot_ is read at random by both threads in step 5: written only when it changes, its
       // line is not taken from the other core's cache each tick)
       if (slot_[id] != i) slot_[id] = static_cast<uint32_t>(i);
-      seen_[id] = tick_;
       fresh += state_[id] == kOut;
       const Box& b = boxes[i];
       const Fat& was = fat_[id];
@@ -225,6 +224,10 @@ void PairCache::pairs(const std::vector<Box>& boxes, const std::vector<uint32_t>
   size_t fresh = 0;
   for (int c = 0; c < k1; ++c) fresh += chunk_new_[c];
   const size_t ids_n = live_ > n - fresh ? fat_.size() : 0;
+  if (ids_n)  // (stamped only then: a tick in which none went writes no line of seen_)
+    core::run_chunks(jobs, n, kSlotGrain, [&](int, size_t i0, size_t i1) {
+      for (size_t i = i0; i < i1; ++i) seen_[ids[i]] = tick_;
+    }, 4);
   const int k2 = core::run_chunks(jobs, ids_n, kSlotGrain, [&](int c, size_t d0, size_t d1) {
     auto& gone = chunk_ids_[c];
     gone.clear();

@@ -127,7 +127,7 @@ class PairCache {
   std::vector<Range> range_;     // per id: the cells its fat box is listed in
   std::vector<uint8_t> state_;   // per id
   size_t live_ = 0;              // ids not kOut (listed by the last call)
-  std::vector<uint32_t> seen_;   // per id: the last call that listed it
+  std::vector<uint32_t> seen_;   // per id: the last call that listed it, of those that looked for gone ids
   std::vector<uint32_t> gone_moved_;  // per id: the last call in which it moved or went
   std::vector<uint32_t> slot_;   // per id: its index in this call's boxes
   std::vector<Moved> moved_;     // this call's moved bodies, in slot order

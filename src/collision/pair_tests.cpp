@@ -97,7 +97,7 @@ bool Detector::narrow(const world::World& w, int a, int b, bool b_fixed, Tier ti
 Trace Detector::pair_sweep(Tier tier, const Vec3& c0a, const Vec3& c1a, double rsa, double rba, const Vec3& c0b,
                            const Vec3& c1b, double rsb, double rbb, Lane& L, bool hit_only) {
   ++L.stats.sweep_pairs;
-  const Trace h = sphere_sweep(c0a, c1a, swept_radius(tier, rsa, rba), c0b, c1b, swept_radius(tier, rsb, rbb), hit_only);
+  const Trace h = sphere_sweep_checked(c0a, c1a, swept_radius(tier, rsa, rba), c0b, c1b, swept_radius(tier, rsb, rbb), hit_only);
   if (!h.hit) ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
   else ++L.stats.sweep_hits;
   return h;
@@ -189,7 +189,7 @@ void Detector::decide_pending(const world::World& w, size_t p, Lane& L) {
     const Vec3 cb0 = k.b_fixed ? world::fixed_centre(w, b) : swept_[q.ib].c0;
     const Vec3 cb1 = k.b_fixed ? cb0 : swept_[q.ib].c1;
     const double rb = k.b_fixed ? world::fixed_radius(w, b) : swept_[q.ib].r_sphere;
-    const Trace h = sphere_sweep(sa.c0, sa.c1, sa.r_sphere, cb0, cb1, rb);
+    const Trace h = sphere_sweep_checked(sa.c0, sa.c1, sa.r_sphere, cb0, cb1, rb);
     ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
     if (!h.hit) return;
     static_cast<Trace&>(k) = h;

@@ -11,33 +11,21 @@ Trace sphere_sweep(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, co
   if (!finite(a0) || !finite(a1) || !finite(b0) || !finite(b1) || !std::isfinite(ra) || !std::isfinite(rb))
     throw std::invalid_argument("sphere_sweep: position or radius is not finite (NaN or infinite input)");
   if (ra < 0 || rb < 0) throw std::invalid_argument("sphere_sweep: negative radius");
-  Trace h;
-  const Vec3 d0 = b0 - a0;
+  return sphere_sweep_checked(a0, a1, ra, b0, b1, rb, hit_only);
+}
+
+namespace detail {
+
+void sweep_overflows() {
+  throw std::invalid_argument("sphere_sweep: motion overflows (infinite relative displacement)");
+}
+
+Trace sweep_contact(Trace h, const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, const Vec3& b1, double rb,
+                    double A, double B, double C, double s) {
   const Vec3 v = (b1 - b0) - (a1 - a0);
   const double R = ra + rb;
-  const double A = v.squaredNorm();
-  const double B = d0.dot(v);
-  const double C = d0.squaredNorm() - R * R;
-  if (!std::isfinite(A) || !std::isfinite(B) || !std::isfinite(C))
-    throw std::invalid_argument("sphere_sweep: motion overflows (infinite relative displacement)");
-  if (C < 0) {  // overlapping at the start
-    h.hit = h.started_inside = true;
-    h.fraction = 0;
-    if (hit_only) return h;
-    h.exit_fraction = A > 0 ? std::min(1.0, (-B + std::sqrt(B * B - A * C)) / A) : 1.0;
-  } else {
-    if (A <= 0 || B >= 0) return h;  // no relative motion, or moving apart (or tangent at t=0)
-    const double disc = B * B - A * C;
-    if (disc < 0) return h;
-    const double s = std::sqrt(disc);
-    // Smaller root, in the form that does not cancel: -B > 0, so -B + s > 0.
-    const double t = C / (-B + s);
-    if (t > 1) return h;
-    h.hit = true;
-    h.fraction = t;
-    if (hit_only) return h;
-    h.exit_fraction = std::min(1.0, (-B + s) / A);
-  }
+  if (h.started_inside) h.exit_fraction = A > 0 ? std::min(1.0, (-B + std::sqrt(B * B - A * C)) / A) : 1.0;
+  else h.exit_fraction = std::min(1.0, (-B + s) / A);
   const Vec3 ca = a0 + h.fraction * (a1 - a0), cb = b0 + h.fraction * (b1 - b0);
   const Vec3 d = cb - ca;
   const double n = d.norm();
@@ -48,5 +36,7 @@ Trace sphere_sweep(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, co
   h.point = 0.5 * ((ca + ra * h.normal) + (cb - rb * h.normal));
   return h;
 }
+
+}  // namespace detail
 
 }  // namespace npsnet::collision

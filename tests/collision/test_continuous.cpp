@@ -335,3 +335,37 @@ TEST(Method, ScenarioSelectsMethodAndTierAndRejectsUnknownOnes) {
     }
   }
 }
+
+// A round leaves its shooter's hull in its first tick: the two never meet (the pair loop asks
+// world.ents.owner only of a body whose tags say it has one), while the round meets the tank it
+// flies into. Either way round in storage (the round's slot before or after the shooter's); with
+// no owner set, the shooter's contact is reported, so the test can tell.
+TEST(Continuous, ARoundNeverMeetsItsShooterButMeetsItsTarget) {
+  for (const bool round_first : {false, true}) {
+    for (const bool owned : {true, false}) {
+      SCOPED_TRACE(std::string(round_first ? "round stored first" : "shooter stored first") + (owned ? ", owned" : ", no owner"));
+      auto w = test::flat_world();
+      test::index_fixed(w);
+      int shooter = -1, round = -1;
+      if (!round_first) shooter = test::add_vehicle(w, "shooter", "m1a1", 1000, 1000, 0, 0);
+      round = test::add_vehicle(w, "round", "he_round", 1000, 1043, 0, 0);  // the tick's end
+      if (round_first) shooter = test::add_vehicle(w, "shooter", "m1a1", 1000, 1000, 0, 0);
+      const int target = test::add_vehicle(w, "target", "m1a1", 1000, 1040, 0, 0);
+      w.ents.vel[shooter] = w.ents.vel[target] = Vec3::Zero();
+      w.ents.vel[round] = Vec3(0, 400, 0);  // from 1003 m, in the shooter's sphere, through the target's
+      if (owned) w.ents.owner[round] = shooter;
+      collision::Detector d(continuous(0.1));
+      std::vector<collision::Contact> out;
+      d.detect(w, out);
+      bool with_shooter = false, with_target = false;
+      for (const auto& c : out) {
+        ASSERT_FALSE(c.b_fixed);
+        const int other = c.a == round ? c.b : c.b == round ? c.a : -1;
+        with_shooter |= other == shooter;
+        with_target |= other == target;
+      }
+      EXPECT_EQ(with_shooter, !owned);
+      EXPECT_TRUE(with_target);
+    }
+  }
+}

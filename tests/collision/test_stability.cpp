@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 
@@ -63,6 +64,43 @@ TEST(Stability, HitOnlySweepAnswersAsTheWholeSweep) {
   }
   EXPECT_GT(hits, 2000);
   EXPECT_GT(hits - inside, 500) << "meetings within the tick, not only overlaps at its start";
+}
+
+// The detector's sweep (sphere_sweep_checked: no check of each input) answers as sphere_sweep,
+// bit for bit, on the lattice above and on arbitrary doubles, whole and hit-only; and it still
+// rejects every NaN or infinite coordinate or radius, through the motion's terms.
+TEST(Stability, TheCheckedSweepAnswersAsTheSweep) {
+  std::mt19937 rng(17);
+  std::uniform_int_distribution<int> q(-8, 8), rq(0, 6);
+  std::uniform_real_distribution<double> u(-20, 20), ur(0, 5);
+  auto same = [](const collision::Trace& x, const collision::Trace& y) {
+    return x.hit == y.hit && x.started_inside == y.started_inside && std::memcmp(&x.fraction, &y.fraction, 8) == 0 &&
+           std::memcmp(&x.exit_fraction, &y.exit_fraction, 8) == 0 && std::memcmp(x.normal.data(), y.normal.data(), 24) == 0 &&
+           std::memcmp(x.point.data(), y.point.data(), 24) == 0;
+  };
+  int hits = 0;
+  for (int k = 0; k < 40000; ++k) {
+    const bool lattice = k % 2;
+    auto p = [&] { return lattice ? Vec3(q(rng) * 0.5, q(rng) * 0.5, q(rng) * 0.25) : Vec3(u(rng), u(rng), u(rng)); };
+    const Vec3 a0 = p(), b0 = p();
+    const Vec3 a1 = k % 3 ? p() : a0, b1 = k % 5 ? p() : b0;
+    const double ra = lattice ? rq(rng) * 0.5 : ur(rng), rb = lattice ? rq(rng) * 0.5 : ur(rng);
+    for (const bool only : {false, true}) {
+      const auto want = sphere_sweep(a0, a1, ra, b0, b1, rb, only);
+      ASSERT_TRUE(same(collision::sphere_sweep_checked(a0, a1, ra, b0, b1, rb, only), want)) << k << " " << only;
+      hits += want.hit;
+    }
+  }
+  EXPECT_GT(hits, 4000);
+  for (const double bad : {double(NAN), kInf, -kInf}) {
+    for (int at = 0; at < 14; ++at) {  // each coordinate of a0, a1, b0, b1, then ra, rb
+      Vec3 v[4] = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(3, 0, 0), Vec3(2, 0, 0)};
+      double r[2] = {1, 1};
+      if (at < 12) v[at / 3][at % 3] = bad;
+      else r[at - 12] = bad;
+      EXPECT_THROW(collision::sphere_sweep_checked(v[0], v[1], r[0], v[2], v[3], r[1]), std::invalid_argument) << at << " " << bad;
+    }
+  }
 }
 
 TEST(Stability, CoincidentCentresGiveAUnitNormal) {
