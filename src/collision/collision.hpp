@@ -32,6 +32,7 @@
 // merged in range order, so contacts, events and stats are the same bytes for any thread count.
 // The world is changed only by world::apply of respond's Changes.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -63,8 +64,12 @@ struct Contact : Trace {
   const char* method = "";
   const char* tier = "";  // the tier that decided it (tier_name)
 };
-// The key of a contact episode (moving pairs unordered; fixed contacts flagged).
-uint64_t contact_key(int a, int b, bool b_fixed);
+// The key of a contact episode (moving pairs unordered; fixed contacts flagged in the top bit).
+inline uint64_t contact_key(int a, int b, bool b_fixed) {
+  const uint64_t lo = static_cast<uint32_t>(b_fixed ? a : std::min(a, b));
+  const uint64_t hi = static_cast<uint32_t>(b_fixed ? b : std::max(a, b));
+  return (b_fixed ? (1ull << 63) : 0) | (lo << 31) | hi;
+}
 
 // The names of both live in world/collision_names.hpp (the files that name them are read there).
 using Method = world::CollisionMethod;
@@ -271,7 +276,15 @@ class Detector {
   static size_t episode_bucket(size_t lo) { return lo >> kEpisodeBucketShift; }
   std::vector<uint32_t> lo_start_;
   void index_episodes(size_t n);          // n: entity slots
-  bool was_touching(int a, int b) const;  // moving pair (a, b) in contact last tick
+  // Moving pair (a, b) in contact last tick (inline: the pair loop asks it of every pair).
+  bool was_touching(int a, int b) const {
+    const uint64_t key = contact_key(a, b, false);
+    if (lo_start_.empty()) return std::binary_search(previous_.begin(), previous_.end(), key);
+    const size_t lo = episode_bucket(static_cast<size_t>(std::min(a, b)));
+    for (uint32_t k = lo_start_[lo], end = lo_start_[lo + 1]; k < end; ++k)
+      if (previous_[k] == key) return true;
+    return false;
+  }
   bool was_in_contact(uint64_t key) const;  // the pair of this contact_key, moving or fixed
   std::vector<Contact> candidates_;
   DetectStats stats_;

@@ -14,16 +14,6 @@
 #include "world/pose.hpp"
 
 namespace npsnet::collision {
-namespace {
-
-uint64_t pair_key(int a, int b, bool fixed) {
-  // Moving pairs ordered (lo, hi); fixed contacts flagged in the top bit.
-  const uint64_t lo = static_cast<uint32_t>(fixed ? a : std::min(a, b));
-  const uint64_t hi = static_cast<uint32_t>(fixed ? b : std::max(a, b));
-  return (fixed ? (1ull << 63) : 0) | (lo << 31) | hi;
-}
-
-}  // namespace
 
 void Detector::detect(const world::World& w, std::vector<Contact>& out) {
   assert(w.valid());
@@ -44,15 +34,13 @@ void Detector::detect(const world::World& w, std::vector<Contact>& out) {
 
   // One event per contact episode: report only pairs not touching last tick.
   for (const Contact& k : candidates_) {
-    if (was_in_contact(pair_key(k.a, k.b, k.b_fixed))) continue;
+    if (was_in_contact(contact_key(k.a, k.b, k.b_fixed))) continue;
     out.push_back(k);
     ++stats_.contacts;
   }
   previous_.swap(touching_);
   times_.total = core::ms_since(t0);
 }
-
-uint64_t contact_key(int a, int b, bool fixed) { return pair_key(a, b, fixed); }
 
 void Detector::index_episodes(size_t n) {
   // A counting sort of the moving pairs' keys by the bucket of their lower index (one pass to
@@ -80,15 +68,6 @@ void Detector::index_episodes(size_t n) {
   previous_.swap(sort_scratch_);
 }
 
-bool Detector::was_touching(int a, int b) const {
-  const uint64_t key = pair_key(a, b, false);
-  if (lo_start_.empty()) return std::binary_search(previous_.begin(), previous_.end(), key);
-  const size_t lo = episode_bucket(static_cast<size_t>(std::min(a, b)));
-  for (uint32_t k = lo_start_[lo], end = lo_start_[lo + 1]; k < end; ++k)
-    if (previous_[k] == key) return true;
-  return false;
-}
-
 bool Detector::was_in_contact(uint64_t key) const {
   if (lo_start_.empty()) return std::binary_search(previous_.begin(), previous_.end(), key);
   if (!(key >> 63)) return was_touching(static_cast<int>((key >> 31) & 0xffffffffu), static_cast<int>(key & 0x7fffffffu));
@@ -112,7 +91,7 @@ void Detector::detect_thesis(const world::World& w) {
       const Vec3 fc = world::fixed_centre(w, o);
       const double rr = r + world::fixed_radius(w, o);
       if ((fc - c).squaredNorm() >= rr * rr) return;
-      const uint64_t key = pair_key(e, o, true);
+      const uint64_t key = contact_key(e, o, true);
       touching_.push_back(key);
       Contact k;
       k.a = e, k.b = o, k.b_fixed = true, k.hit = true;
@@ -164,7 +143,7 @@ void Detector::detect_thesis(const world::World& w) {
         continue;
       }
       const int lo = std::min(a, b), hi = std::max(a, b);
-      touching_.push_back(pair_key(lo, hi, false));
+      touching_.push_back(contact_key(lo, hi, false));
       Contact k;
       k.a = lo, k.b = hi, k.hit = true;
       const Vec3 d = (lo == a ? cb - ca : ca - cb);
