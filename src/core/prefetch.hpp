@@ -5,6 +5,7 @@
 // address computed from two divisions into an index (world/terrain.hpp's posts; seen in the code
 // it emitted, and in a six-line reduction); elsewhere the builtin.
 #pragma once
+#include <cstddef>
 
 namespace npsnet::core {
 
@@ -33,6 +34,15 @@ template <class T>
 inline void prefetch_object(const T* p) {
   prefetch(p);
   prefetch(reinterpret_cast<const char*>(p + 1) - 1);
+}
+
+// Every line a larger object spans (read whole): each 64-byte step from its start, and its last
+// byte's.
+template <class T>
+inline void prefetch_lines(const T* p) {
+  const char* b = reinterpret_cast<const char*>(p);
+  for (size_t k = 0; k < sizeof(T); k += 64) prefetch(b + k);
+  prefetch(b + sizeof(T) - 1);
 }
 
 }  // namespace npsnet::core
