@@ -21,8 +21,7 @@ void sweep_overflows() {
 }
 
 Trace sweep_contact(Trace h, const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, const Vec3& b1, double rb,
-                    double A, double B, double C, double s) {
-  const Vec3 v = (b1 - b0) - (a1 - a0);
+                    const Vec3& v, double A, double B, double C, double s) {
   const double R = ra + rb;
   if (h.started_inside) h.exit_fraction = A > 0 ? std::min(1.0, (-B + std::sqrt(B * B - A * C)) / A) : 1.0;
   else h.exit_fraction = std::min(1.0, (-B + s) / A);

@@ -21,6 +21,13 @@ namespace npsnet::collision {
 Trace sphere_sweep(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, const Vec3& b1, double rb,
                    bool hit_only = false);
 
+namespace detail {
+// The hit's exit, normal and point (sphere_sweep_checked, once the first touch is known).
+Trace sweep_contact(Trace h, const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, const Vec3& b1, double rb,
+                    const Vec3& v, double A, double B, double C, double s);
+[[noreturn]] void sweep_overflows();
+}  // namespace detail
+
 // The same answer, bit for bit, for radii the caller knows are finite and not negative (the
 // detector's, from the kinds it loaded), without sphere_sweep's checks of each input: a NaN or
 // infinite coordinate or radius still throws std::invalid_argument, by way of the motion's
@@ -28,17 +35,7 @@ Trace sphere_sweep(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, co
 // episode's answer (hit_only) ahead of the rest: the continuous method's pair loop asks it of
 // about 100,000 pairs a tick in the 100,000-vehicle crowd.
 inline Trace sphere_sweep_checked(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, const Vec3& b1, double rb,
-                                  bool hit_only = false);
-
-namespace detail {
-// The hit's exit, normal and point (sphere_sweep_checked, once the first touch is known).
-Trace sweep_contact(Trace h, const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, const Vec3& b1, double rb,
-                    double A, double B, double C, double s);
-[[noreturn]] void sweep_overflows();
-}  // namespace detail
-
-inline Trace sphere_sweep_checked(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, const Vec3& b1, double rb,
-                                  bool hit_only) {
+                                  bool hit_only = false) {
   Trace h;
   const Vec3 d0 = b0 - a0;
   const Vec3 v = (b1 - b0) - (a1 - a0);
@@ -50,7 +47,7 @@ inline Trace sphere_sweep_checked(const Vec3& a0, const Vec3& a1, double ra, con
   if (C < 0) {  // overlapping at the start
     h.hit = h.started_inside = true;
     h.fraction = 0;
-    return hit_only ? h : detail::sweep_contact(h, a0, a1, ra, b0, b1, rb, A, B, C, 0);
+    return hit_only ? h : detail::sweep_contact(h, a0, a1, ra, b0, b1, rb, v, A, B, C, 0);
   }
   if (A <= 0 || B >= 0) return h;  // no relative motion, or moving apart (or tangent at t=0)
   const double disc = B * B - A * C;
@@ -61,7 +58,7 @@ inline Trace sphere_sweep_checked(const Vec3& a0, const Vec3& a1, double ra, con
   if (t > 1) return h;
   h.hit = true;
   h.fraction = t;
-  return hit_only ? h : detail::sweep_contact(h, a0, a1, ra, b0, b1, rb, A, B, C, s);
+  return hit_only ? h : detail::sweep_contact(h, a0, a1, ra, b0, b1, rb, v, A, B, C, s);
 }
 
 }  // namespace npsnet::collision

@@ -28,18 +28,10 @@ inline void prefetch_write(const void* p) {
 #endif
 }
 
-// Both lines an object may span (one of 24 bytes, say, at an 8-byte boundary): its first byte's
-// and its last's.
+// Every line an object spans: each 64-byte step from its first byte, and its last byte's (one
+// of 24 bytes at an 8-byte boundary, say, may span two lines; a publisher of 200, four).
 template <class T>
 inline void prefetch_object(const T* p) {
-  prefetch(p);
-  prefetch(reinterpret_cast<const char*>(p + 1) - 1);
-}
-
-// Every line a larger object spans (read whole): each 64-byte step from its start, and its last
-// byte's.
-template <class T>
-inline void prefetch_lines(const T* p) {
   const char* b = reinterpret_cast<const char*>(p);
   for (size_t k = 0; k < sizeof(T); k += 64) prefetch(b + k);
   prefetch(b + sizeof(T) - 1);

@@ -66,7 +66,7 @@ void NetBridge::publish_vehicles() {
       // 100,000, more than the cache) asked for kPublishAhead vehicles early: the hardware's
       // own fetching missed them among this loop's many arrays.
       if (opt_.dr_prefilter && i + kPublishAhead < i1)
-        core::prefetch_lines(&anchors_[i + kPublishAhead]), core::prefetch_lines(&pubs_[i + kPublishAhead]);
+        core::prefetch_object(&anchors_[i + kPublishAhead]), core::prefetch_object(&pubs_[i + kPublishAhead]);
       const int e = own_[i];
       const Vec3& v = w.ents.vel[e];
       if (pubs_[i].has_sent()) accel_[i] += ((v - prev_vel_[i]) / dt - accel_[i]) * alpha;
