@@ -51,6 +51,7 @@ class Gridsquares {
 class FixedGrid : public Gridsquares {
  public:
   // Objects at base positions `pos` with reach `reach_m` (m), in a width x depth map from (0, 0).
+  // A grid never built answers every query with nothing.
   void build(const std::vector<Vec3>& pos, const std::vector<float>& reach_m, double width_m, double depth_m,
              double cell_m);
   size_t size() const { return objects_; }
@@ -61,6 +62,7 @@ class FixedGrid : public Gridsquares {
   // f(object) for the objects whose home is gridsquare `cell`, ascending (the thesis's list).
   template <class F>
   void for_each_home(int cell, F&& f) const {
+    if (start_.empty()) return;  // never built: lists nothing
     for (uint32_t k = start_[cell]; k < start_[cell + 1]; ++k)
       if (items_[k].home == cell) f(static_cast<int>(items_[k].id));
   }
@@ -68,6 +70,7 @@ class FixedGrid : public Gridsquares {
   // [x - r, x + r] x [y - r, y + r] overlaps: gridsquares row by row, ascending within each.
   template <class F>
   void for_each_near(double x, double y, double r, F&& f) const {
+    if (start_.empty()) return;  // never built
     const int i0 = col(x - r), i1 = col(x + r), j0 = row(y - r), j1 = row(y + r);
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) for_each_home(j * cols_ + i, f);
@@ -82,6 +85,7 @@ class FixedGrid : public Gridsquares {
   // a box inside it with them and `overlaps` (collision: the fixed objects near a vehicle).
   template <class F>
   void query_listed(float lox, float loy, float hix, float hiy, F&& f) const {
+    if (occupied_.empty()) return;  // never built: lists nothing
     const int i0 = col(lox), i1 = col(hix), j0 = row(loy), j1 = row(hiy);
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) {

@@ -101,6 +101,17 @@ TEST(FixedGrid, EveryBuildHasItsOwnGeneration) {
   EXPECT_NE(a.generation(), first);
 }
 
+TEST(FixedGrid, AGridNeverBuiltListsNothing) {
+  const world::FixedGrid g;
+  int calls = 0;
+  g.query(-10, -10, 1e4f, 1e4f, [&](int, float) { ++calls; });
+  g.query_listed(0, 0, 500, 500, [&](uint32_t, const world::GridItem&) { ++calls; });
+  g.for_each_near(100, 100, 1000, [&](int) { ++calls; });
+  g.for_each_home(0, [&](int) { ++calls; });
+  EXPECT_EQ(calls, 0);
+  EXPECT_EQ(g.size(), 0u);
+}
+
 TEST(FixedGrid, AWorldIndexesEveryObjectByItsReach) {
   auto w = test::flat_world();
   const int t = test::add_fixed(w, "t", "tree", 124.0, 300.0);  // 1 m west of a gridsquare border
