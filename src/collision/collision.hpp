@@ -220,7 +220,7 @@ class Detector {
     double t_in = 0, t_out = 1;  // the bound spheres' first touch and exit (fractions of the tick)
     uint32_t ia = 0, ib = 0;     // sweep slots of a and b (ib: unused for a fixed object)
     uint32_t rank_a = 0, rank_b = 0;  // their id ranks (rank_b: in fixed_rank_ when b is fixed)
-    double closing = 0;          // |va - vb| (m/s)
+    double closing = 0;          // how far they close over the tick (m): closing_travel
     bool required = false;       // set when made: a driven or snapshotted body; allocate_tiers adds the seen
   };
   // One thread's share of a detection: merged into candidates_, touching_, stats_ in range order.
@@ -237,10 +237,9 @@ class Detector {
   void fixed_contacts(const world::World& w, size_t i, Lane& L);
   void pair_contact(const world::World& w, size_t p, Lane& L);
   // A hint (core/prefetch.hpp): the cache lines pair_contact(p) reads, in three stages, each
-  // reading what the one before asked for: 0 the two bodies' Swept lines (tags in them); 1 their velocities
-  // (a pair's closing speed when it is left to allocate_tiers) and lo_start_ of the lower entity
-  // index; 2 the episode keys lo_start_ points to.
-  void prefetch_pair(const world::World& w, size_t p, int stage) const;
+  // reading what the one before asked for: 0 the two bodies' Swept lines (tags in them); 1
+  // lo_start_ of the lower entity index; 2 the episode keys lo_start_ points to.
+  void prefetch_pair(size_t p, int stage) const;
   void allocate_tiers(const world::World& w);  // scene_tiers.cpp
   void decide_pending(const world::World& w, size_t p, Lane& L);
   // A moving pair, first its sweep at the tier it needs (pair_tier: the sphere for a munition):
@@ -277,10 +276,12 @@ class Detector {
   std::vector<uint32_t> lo_start_;
   void index_episodes(size_t n);          // n: entity slots
   // Moving pair (a, b) in contact last tick (inline: the pair loop asks it of every pair).
-  bool was_touching(int a, int b) const {
-    const uint64_t key = contact_key(a, b, false);
+  bool was_touching(int a, int b) const { return moving_key_was(contact_key(a, b, false)); }
+  // A moving pair's contact_key among last tick's: in the bucket of its lower index (the key's
+  // bits 31-62), or by binary search when there is no index.
+  bool moving_key_was(uint64_t key) const {
     if (lo_start_.empty()) return std::binary_search(previous_.begin(), previous_.end(), key);
-    const size_t lo = episode_bucket(static_cast<size_t>(std::min(a, b)));
+    const size_t lo = episode_bucket(static_cast<size_t>(key >> 31));
     for (uint32_t k = lo_start_[lo], end = lo_start_[lo + 1]; k < end; ++k)
       if (previous_[k] == key) return true;
     return false;
@@ -319,6 +320,13 @@ class Detector {
   // The tier a moving pair needs: the sphere when either is a munition, else the lower top tier.
   static Tier pair_tier(const SweptTags& a, const SweptTags& b) {
     return a.munition || b.munition ? Tier::Sphere : std::min(a.top(), b.top());
+  }
+  // A pending pair's closing, the key allocate_tiers ranks pairs by: the length of b's travel
+  // over the tick relative to a's (m; the sweep's relative motion), |va - vb| dt up to rounding,
+  // from the lines the pair loop has read (the velocities, a line of each body at random, were
+  // read for every pair to serve the few left to allocate_tiers). b fixed: its travel is zero.
+  static double closing_travel(const Swept& a, const Vec3& b0, const Vec3& b1) {
+    return ((b1 - b0) - (a.c1 - a.c0)).norm();
   }
   std::vector<Box> boxes_;              // swept boxes
   std::vector<PairCache::Travel> travel_;  // each sweep's x-y travel (m): PairCache's margins

@@ -141,8 +141,8 @@ constexpr size_t kEntityGrain = 128, kPairGrain = 256, kPendingGrain = 4;
 constexpr int kEntityChunksPerThread = 4, kPairChunksPerThread = 4, kPendingChunksPerThread = 8;
 // The pairs lie in no spatial order: what a pair reads of its two bodies is asked of the cache
 // kPairAhead pairs early (prefetch_pair), so their misses overlap instead of stalling in turn:
-// its bodies' Swept lines twice as far ahead, their velocities and lo_start_ kPairAhead, the
-// episode keys half as far (each stage reads what the one before asked for).
+// its bodies' Swept lines twice as far ahead, lo_start_ kPairAhead, the episode keys half as
+// far (each stage reads what the one before asked for).
 constexpr size_t kPairAhead = 8, kPendingAhead = 4;
 // The entity pass writes each entity's Swept, tags and box, which the pair loop and the broad
 // phase read last tick on whichever thread had the pair: asked for kEntityAhead entities early.
@@ -190,7 +190,7 @@ void Detector::fixed_contacts(const world::World& w, size_t i, Lane& L) {
     } else if (opt_.tier == Tier::Auto) {  // allocate_tiers gives it its tier first
       Pending& q = L.pending.emplace_back();
       q.a = e, q.b = static_cast<int>(o), q.b_fixed = true, q.exact = tier, q.t_in = h.fraction, q.t_out = h.exit_fraction;
-      q.ia = static_cast<uint32_t>(i), q.ib = static_cast<uint32_t>(o), q.closing = ents.vel[e].norm();
+      q.ia = static_cast<uint32_t>(i), q.ib = static_cast<uint32_t>(o), q.closing = closing_travel(sw, fc, fc);
       q.rank_a = sw.tags.rank, q.rank_b = fixed_rank_.ranks()[o], q.required = sw.tags.required;
       return;
     } else if (!narrow(w, e, static_cast<int>(o), true, tier, h.fraction, h.exit_fraction, k, L)) {
@@ -333,9 +333,9 @@ void Detector::detect_continuous(const world::World& w) {
   lap(times_.broad);
   in_lanes(pairs_.size(), kPairGrain, kPairChunksPerThread, [&](int c, size_t p0, size_t p1) {
     for (size_t p = p0; p < p1; ++p) {
-      if (p + 2 * kPairAhead < p1) prefetch_pair(w, p + 2 * kPairAhead, 0);
-      if (p + kPairAhead < p1) prefetch_pair(w, p + kPairAhead, 1);
-      if (p + kPairAhead / 2 < p1) prefetch_pair(w, p + kPairAhead / 2, 2);
+      if (p + 2 * kPairAhead < p1) prefetch_pair(p + 2 * kPairAhead, 0);
+      if (p + kPairAhead < p1) prefetch_pair(p + kPairAhead, 1);
+      if (p + kPairAhead / 2 < p1) prefetch_pair(p + kPairAhead / 2, 2);
       pair_contact(w, p, lanes_[c]);
     }
   });

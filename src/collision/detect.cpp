@@ -70,7 +70,7 @@ void Detector::index_episodes(size_t n) {
 
 bool Detector::was_in_contact(uint64_t key) const {
   if (lo_start_.empty()) return std::binary_search(previous_.begin(), previous_.end(), key);
-  if (!(key >> 63)) return was_touching(static_cast<int>((key >> 31) & 0xffffffffu), static_cast<int>(key & 0x7fffffffu));
+  if (!(key >> 63)) return moving_key_was(key);
   const size_t lo = lo_start_.size() - 1;  // (the fixed keys follow the last bucket)
   return std::binary_search(previous_.begin() + lo_start_[lo], previous_.end(), key);
 }

@@ -105,7 +105,6 @@ Trace Detector::pair_sweep(Tier tier, const Vec3& c0a, const Vec3& c1a, double r
 
 bool Detector::pair_hit(const world::World& w, int a, int b, const Trace& h, Tier tier, Contact& k, Lane& L,
                         Pending* defer) {
-  const auto& ents = w.ents;
   k.a = a, k.b = b, k.b_fixed = false, k.dt_s = opt_.dt_s;
   if (tier == Tier::Sphere) {
     ++L.stats.tier_decided[static_cast<int>(Tier::Sphere)];
@@ -117,13 +116,12 @@ bool Detector::pair_hit(const world::World& w, int a, int b, const Trace& h, Tie
   if (defer) {  // auto tier: allocate_tiers gives it its tier first
     defer->a = a, defer->b = b, defer->b_fixed = false;
     defer->exact = tier, defer->t_in = h.fraction, defer->t_out = h.exit_fraction;
-    defer->closing = (ents.vel[a] - ents.vel[b]).norm();
     return false;
   }
   return narrow(w, a, b, false, tier, h.fraction, h.exit_fraction, k, L);
 }
 
-void Detector::prefetch_pair(const world::World& w, size_t p, int stage) const {
+void Detector::prefetch_pair(size_t p, int stage) const {
   const auto [i, j] = pairs_[p];
   if (stage == 0) {
     core::prefetch(&swept_[i]), core::prefetch(&swept_[j]);
@@ -132,7 +130,6 @@ void Detector::prefetch_pair(const world::World& w, size_t p, int stage) const {
   const uint32_t ea = swept_[i].e, eb = swept_[j].e;
   const size_t lo = episode_bucket(std::min(ea, eb));
   if (stage == 1) {
-    core::prefetch_object(&w.ents.vel[ea]), core::prefetch_object(&w.ents.vel[eb]);  // a pair left to allocate_tiers: its closing speed
     if (!lo_start_.empty()) core::prefetch(&lo_start_[lo]);
   } else if (!lo_start_.empty() && lo_start_[lo] < previous_.size()) {
     core::prefetch(&previous_[lo_start_[lo]]);
@@ -169,7 +166,7 @@ void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
   q.a = -1;
   if (!pair_hit(w, a, b, h, tier, k, L, opt_.tier == Tier::Auto ? &q : nullptr)) {
     if (q.a >= 0) {  // deferred to allocate_tiers
-      q.ia = static_cast<uint32_t>(ia), q.ib = static_cast<uint32_t>(ib);
+      q.ia = static_cast<uint32_t>(ia), q.ib = static_cast<uint32_t>(ib), q.closing = closing_travel(*sa, sb->c0, sb->c1);
       q.rank_a = ta->rank, q.rank_b = tb->rank, q.required = ta->required || tb->required;
       L.pending.push_back(q);
     }

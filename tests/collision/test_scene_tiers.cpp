@@ -3,6 +3,7 @@
 // budgeted crowd never misses a contact the sphere tier finds.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <random>
 #include <set>
 #include <tuple>
@@ -90,6 +91,49 @@ TEST(SceneTiers, APairInAViewerFrustumOrWithADrivenOrSnapshottedVehicleGetsTheEx
   w.ents.driven[1] = 0;
   w.ents.snapshots[0] = 1;
   EXPECT_EQ(decide(w, 0.0).chosen, Tier::Mesh);
+}
+
+// The budget raises the faster closing pair first, whatever the ids say: two pairs of tanks
+// head-on, the slow one (4 m/s) with the lower ids, and a tank driven into a building at 30 m/s
+// (a fixed object closes at the tank's speed). A budget with room for one pair's exact tier
+// gives it to the fastest, and the sphere to the others.
+TEST(SceneTiers, TheBudgetRaisesTheFasterClosingPairFirst) {
+  world::World w = test::flat_world();
+  std::vector<int> bodies = {test::add_vehicle(w, "a1", "m1a1", 1000.0, 1000.0, 90.0, 2.0),
+                             test::add_vehicle(w, "a2", "m1a1", 1009.0, 1000.0, 270.0, 2.0),
+                             test::add_vehicle(w, "z1", "m1a1", 1000.0, 1300.0, 90.0, 10.0),
+                             test::add_vehicle(w, "z2", "m1a1", 1009.0, 1300.0, 270.0, 10.0)};
+  const int house = test::add_fixed(w, "house", "building", 1500, 1500);
+  const double wall = 1500 + w.models[w.kinds[w.kinds.find("building")].models[0]].bbox_min.y();
+  bodies.push_back(test::add_vehicle(w, "m", "m1a1", 1500.0, wall - 4.5, 0.0, 30.0));  // north, into the south wall
+  for (int e : bodies) w.ents.snapshots[e] = 0;
+  test::index_fixed(w);
+  auto chosen = [&](double budget_ms) {
+    collision::Detector det(collision::options_from("continuous", "auto", 0.1));
+    det.set_budget_ms(budget_ms);
+    std::vector<collision::Contact> out;
+    det.detect(w, out);
+    std::map<std::string, collision::TierChoice> by;  // "slow", "fast", "house"
+    for (const auto& c : det.tier_choices())
+      by[c.b_fixed ? "house" : w.ents.id[c.a] == "a1" || w.ents.id[c.a] == "a2" ? "slow" : "fast"] = c;
+    EXPECT_EQ(by.size(), 3u);
+    return by;
+  };
+  auto ample = chosen(1e6);
+  ASSERT_EQ(ample["house"].b, house);
+  for (const char* k : {"slow", "fast", "house"}) ASSERT_GT(ample[k].exact, Tier::Sphere) << k;
+  const double sphere_us = collision::kTierCostUs[static_cast<int>(Tier::Sphere)];
+  auto raise_us = [&](Tier t) { return collision::kTierCostUs[static_cast<int>(t)] - sphere_us; };
+  // Room for the house pair's raise and 1 us more: it alone goes up.
+  auto one = chosen((3 * sphere_us + raise_us(ample["house"].exact) + 1) / 1000);
+  EXPECT_EQ(one["house"].chosen, one["house"].exact);
+  EXPECT_EQ(one["fast"].chosen, Tier::Sphere);
+  EXPECT_EQ(one["slow"].chosen, Tier::Sphere);
+  // Room for the house's and the fast pair's: the slow pair, first by its ids, stays at the sphere.
+  auto two = chosen((3 * sphere_us + raise_us(ample["house"].exact) + raise_us(ample["fast"].exact) + 1) / 1000);
+  EXPECT_EQ(two["house"].chosen, two["house"].exact);
+  EXPECT_EQ(two["fast"].chosen, two["fast"].exact);
+  EXPECT_EQ(two["slow"].chosen, Tier::Sphere);
 }
 
 TEST(SceneTiers, TheBudgetedCrowdNeverMissesASphereTierContact) {
