@@ -4,6 +4,7 @@
 // the tests of one moving pair and the narrow phase are in pair_tests.cpp.
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -17,9 +18,13 @@
 namespace npsnet::collision {
 namespace {
 
-// Whether two orientations are the same floats, bit for bit (-0 is not +0).
+// Whether two orientations are the same floats, bit for bit (-0 is not +0). Float by float: the
+// entity pass's orientation is made from three stores just before, and memcmp's 8-byte load of
+// two of them stalled on stores that could not be forwarded (10 % of the pass's samples).
 bool same_bits(const std::array<float, 3>& x, const std::array<float, 3>& y) {
-  return std::memcmp(x.data(), y.data(), sizeof(x)) == 0;
+  for (int k = 0; k < 3; ++k)
+    if (std::bit_cast<uint32_t>(x[k]) != std::bit_cast<uint32_t>(y[k])) return false;
+  return true;
 }
 
 // Rejects an entity whose position, velocity or orientation is NaN or infinite.
