@@ -321,12 +321,12 @@ class Detector {
   static Tier pair_tier(const SweptTags& a, const SweptTags& b) {
     return a.munition || b.munition ? Tier::Sphere : std::min(a.top(), b.top());
   }
-  // A pending pair's closing, the key allocate_tiers ranks pairs by: the length of b's travel
-  // over the tick relative to a's (m; the sweep's relative motion), |va - vb| dt up to rounding,
+  // A pending pair's closing, the key allocate_tiers ranks pairs by: the length of the sweep's
+  // relative motion (m; relative_motion, sweep.hpp), |va - vb| dt up to rounding,
   // from the lines the pair loop has read (the velocities, a line of each body at random, were
   // read for every pair to serve the few left to allocate_tiers). b fixed: its travel is zero.
   static double closing_travel(const Swept& a, const Vec3& b0, const Vec3& b1) {
-    return ((b1 - b0) - (a.c1 - a.c0)).norm();
+    return relative_motion(a.c0, a.c1, b0, b1).norm();
   }
   std::vector<Box> boxes_;              // swept boxes
   std::vector<PairCache::Travel> travel_;  // each sweep's x-y travel (m): PairCache's margins

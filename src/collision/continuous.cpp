@@ -7,7 +7,6 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <stdexcept>
 
 #include "collision/collision.hpp"
@@ -18,10 +17,11 @@
 namespace npsnet::collision {
 namespace {
 
-// Whether two orientations are the same floats, bit for bit (-0 is not +0). Float by float: the
-// entity pass's orientation is made from three stores just before, and memcmp's 8-byte load of
-// two of them stalled on stores that could not be forwarded (10 % of the pass's samples).
-bool same_bits(const std::array<float, 3>& x, const std::array<float, 3>& y) {
+// Whether three floats (an orientation, a model centre) are the same, bit for bit (-0 is not
+// +0). Float by float: the entity pass's orientation is made from three stores just before, and
+// memcmp's 8-byte load of two of them stalled on stores that could not be forwarded (10 % of the
+// pass's samples).
+bool same_bits(const float* x, const float* y) {
   for (int k = 0; k < 3; ++k)
     if (std::bit_cast<uint32_t>(x[k]) != std::bit_cast<uint32_t>(y[k])) return false;
   return true;
@@ -98,7 +98,7 @@ Vec3 Detector::centre_end(const world::World& w, int e, Turn& t) {
   const auto& ents = w.ents;
   const Hpr now{ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]};
   const Vec3f& c = w.kinds[ents.kind[e]].centre_by_state[ents.state[e]];
-  if (!t.turned || !same_bits(t.prev, now) || std::memcmp(t.centre.data(), c.data(), sizeof(float) * 3) != 0) {
+  if (!t.turned || !same_bits(t.prev.data(), now.data()) || !same_bits(t.centre.data(), c.data())) {
     t.offset = world::pose_rotation(memo().dir(static_cast<size_t>(e), now[0]), now[1], now[2]) * c.cast<double>();
     t.centre = c, t.prev = now, t.turned = 1;
   }
@@ -300,7 +300,7 @@ void Detector::detect_continuous(const world::World& w) {
       // written back.)
       const Hpr now{ents.heading_deg[e], ents.pitch_deg[e], ents.roll_deg[e]};
       const Hpr& start = tu.ok && tu.kind == ents.kind[e] ? tu.prev : now;
-      if (!same_bits(tu.start, start)) tu.start = start;
+      if (!same_bits(tu.start.data(), start.data())) tu.start = start;
       if (tu.kind != ents.kind[e]) tu.kind = ents.kind[e];
       if (!tu.ok) tu.ok = 1;
       sw.c1 = centre_end(w, e, tu);

@@ -21,6 +21,11 @@ namespace npsnet::collision {
 Trace sphere_sweep(const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, const Vec3& b1, double rb,
                    bool hit_only = false);
 
+// b's travel over the tick relative to a's: the motion v of d(t) = (b0 - a0) + t v.
+inline Vec3 relative_motion(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) {
+  return (b1 - b0) - (a1 - a0);
+}
+
 namespace detail {
 // The hit's exit, normal and point (sphere_sweep_checked, once the first touch is known).
 Trace sweep_contact(Trace h, const Vec3& a0, const Vec3& a1, double ra, const Vec3& b0, const Vec3& b1, double rb,
@@ -38,7 +43,7 @@ inline Trace sphere_sweep_checked(const Vec3& a0, const Vec3& a1, double ra, con
                                   bool hit_only = false) {
   Trace h;
   const Vec3 d0 = b0 - a0;
-  const Vec3 v = (b1 - b0) - (a1 - a0);
+  const Vec3 v = relative_motion(a0, a1, b0, b1);
   const double R = ra + rb;
   const double A = v.squaredNorm();
   const double B = d0.dot(v);
