@@ -77,6 +77,10 @@ struct StageClock {
   static constexpr const char* kNames[kStages] = {"net in, fires", "dynamics",      "collision, response",
                                                   "apply, events", "net out",       "the rest"};
   std::vector<double> ms[kStages];
+  // Within "collision, response": the detector's passes (collision::PassTimes), each tick.
+  static constexpr int kPasses = 4;
+  static constexpr const char* kPassNames[kPasses] = {"entity pass", "kept broad phase", "pair loop", "tiers"};
+  std::vector<double> pass_ms[kPasses];
   std::chrono::steady_clock::time_point last;
   void begin() { last = std::chrono::steady_clock::now(); }
   void mark(int k) {
@@ -127,7 +131,12 @@ struct Node {
     StageClock& c = *stages;
     sim.before_dynamics = [&c] { c.mark(0); };
     sim.before_detect = [&c](const world::World&) { c.mark(1); };
-    sim.before_apply = [&c](const world::World&, const world::Changes&) { c.mark(2); };
+    sim.before_apply = [&c, this](const world::World&, const world::Changes&) {
+      c.mark(2);
+      const collision::PassTimes& p = sim.detector().pass_times();
+      const double v[StageClock::kPasses] = {p.entities, p.broad, p.pairs, p.tiers};
+      for (int k = 0; k < StageClock::kPasses; ++k) c.pass_ms[k].push_back(v[k]);
+    };
     sim.on_tick = [&c, inner = sim.on_tick](const node::TickReport& r) {
       c.mark(3);
       if (inner) inner(r);
@@ -377,6 +386,9 @@ int main(int argc, char** argv) {
       if (nd.stages)
         for (int k = 0; k < StageClock::kStages; ++k)
           std::printf("  stage %-20s median %.4f ms\n", StageClock::kNames[k], Node::median_of(nd.stages->ms[k]));
+      if (nd.stages)
+        for (int k = 0; k < StageClock::kPasses; ++k)
+          std::printf("    of which %-18s median %.4f ms\n", StageClock::kPassNames[k], Node::median_of(nd.stages->pass_ms[k]));
       continue;
     }
     std::vector<std::unique_ptr<Node>> nodes;  // [net off 1t, net off 2t, net 1t, net 2t]
