@@ -16,26 +16,49 @@ double wrapped_abs_deg(double d) {  // |d| wrapped to [0, 180]
 }
 }  // namespace
 
-bool dr_quiet(const DrAnchor& a, const net::DrPublisher& pub, const world::World& w, int e, double t) {
-  if (!a.valid || !pub.has_sent() || pub.algorithm() != net::DrAlgorithm::RVW) return false;
+DrQuick dr_quick(const DrAnchor& a, const net::DrPublisher& pub) {
+  DrQuick q;
+  q.has_sent = pub.has_sent();
+  if (!a.valid || !pub.has_sent() || pub.algorithm() != net::DrAlgorithm::RVW) return q;
   const net::DrThresholds& th = pub.thresholds();
-  const double since = t - pub.last_sent_s();
-  if (since >= th.heartbeat_s) return false;
-  const Vec3 d = w.ents.pos[e] - a.p;
+  const net::KinematicState& s = pub.sent_state();
+  const Mat3 jtj = a.jac.transpose() * a.jac;
+  const double row = jtj.cwiseAbs().rowwise().sum().maxCoeff();
+  const Mat3 inv = a.jac.inverse();
+  if (!(std::isfinite(row) && inv.allFinite() && std::abs(a.jac.determinant()) > 1e-6)) return q;
+  q.sigma = std::sqrt(row) * (1 + 1e-12);
+  q.p = a.p, q.err = inv * a.err, q.vel = inv * s.velocity, q.acc = inv * s.acceleration;
+  // |rho|: each solve's residual (twice, for its own rounding) times the largest factor it gets.
+  const double hb = th.heartbeat_s;
+  const double rho = 2 * ((a.err - a.jac * q.err).norm() + (s.velocity - a.jac * q.vel).norm() * hb +
+                          (s.acceleration - a.jac * q.acc).norm() * 0.5 * hb * hb) + 1e-9;
+  q.t = a.t, q.last_sent = pub.last_sent_s();
+  q.theta = a.theta, q.turn_rate = s.angular_velocity.norm();
+  q.pos_limit = th.position_threshold_m - rho, q.rot_limit = th.orientation_threshold_rad, q.heartbeat_s = hb;
+  q.heading = a.heading, q.pitch = a.pitch, q.roll = a.roll;
+  q.usable = std::isfinite(q.err.squaredNorm() + q.vel.squaredNorm() + q.acc.squaredNorm());
+  return q;
+}
+
+bool dr_quiet(const DrQuick& q, const world::World& w, int e, double t) {
+  if (!q.usable) return false;
+  const double since = t - q.last_sent;
+  if (since >= q.heartbeat_s) return false;
+  const Vec3 d = w.ents.pos[e] - q.p;
   const double nd = d.norm();
   if (!(nd <= kMaxAnchorDistM)) return false;
   // Orientation first: cheaper, and no bound at all for a vehicle turning.
   const auto& ents = w.ents;
-  const net::KinematicState& s = pub.sent_state();
-  const double rot = a.theta + s.angular_velocity.norm() * (t - a.t) +
-                     (wrapped_abs_deg(ents.heading_deg[e] - a.heading) + std::fabs(ents.pitch_deg[e] - a.pitch) +
-                      std::fabs(ents.roll_deg[e] - a.roll)) * kDeg +
+  const double rot = q.theta + q.turn_rate * (t - q.t) +
+                     (wrapped_abs_deg(ents.heading_deg[e] - q.heading) + std::fabs(ents.pitch_deg[e] - q.pitch) +
+                      std::fabs(ents.roll_deg[e] - q.roll)) * kDeg +
                      kFrameTurnPerM * nd + kBoundEpsRad;
-  if (!(rot < th.orientation_threshold_rad)) return false;
-  const double tc = a.t - pub.last_sent_s();
-  const Vec3 db = Eigen::Vector3d(s.velocity * (since - tc) + 0.5 * s.acceleration * (since * since - tc * tc));
-  const double pos = (a.err + a.jac * d - db).norm() + 0.5 * kCurvaturePerM * nd * nd + kCurvaturePerM * nd + kBoundEpsM;
-  return pos < th.position_threshold_m;
+  if (!(rot < q.rot_limit)) return false;
+  const double tc = q.t - q.last_sent;
+  if (!(tc >= 0)) return false;  // (an anchor is made at or after the last send: rho's factors)
+  const Vec3 x = q.err + d - (q.vel * (since - tc) + 0.5 * q.acc * (since * since - tc * tc));
+  const double pos = q.sigma * x.norm() + 0.5 * kCurvaturePerM * nd * nd + kCurvaturePerM * nd + kBoundEpsM;
+  return pos < q.pos_limit;
 }
 
 void dr_rebase(const net::KinematicState& s, const net::DrPublisher& pub, double t, DrAnchor& a) {

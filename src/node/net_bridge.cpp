@@ -66,6 +66,7 @@ NetBridge::NetBridge(const BridgeOptions& o, std::unique_ptr<net::Session> sessi
   accel_.assign(own_.size(), Vec3::Zero());
   yaw_rate_.assign(own_.size(), 0.f);
   anchors_.assign(own_.size(), DrAnchor{});
+  quick_.assign(own_.size(), DrQuick{});
   changed_.assign(own_.size(), 0);
   prev_heading_.assign(own_.size(), 0.f);
   removed_.assign(own_.size(), 0);
@@ -117,6 +118,7 @@ void NetBridge::catch_up(bool on) {
   if (catching_up_ && !on) {  // going live: announce everything at the next tick
     pubs_.assign(own_.size(), net::DrPublisher(net::DrAlgorithm::RVW, dr_thresholds(opt_.timeout_s)));
     anchors_.assign(own_.size(), DrAnchor{});
+    quick_.assign(own_.size(), DrQuick{});
     accel_.assign(own_.size(), Vec3::Zero());
     const auto& ents = sim_.world().ents;
     for (size_t i = 0; i < own_.size(); ++i) prev_vel_[i] = ents.vel[own_[i]], prev_heading_[i] = ents.heading_deg[own_[i]];

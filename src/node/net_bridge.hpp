@@ -272,6 +272,9 @@ class NetBridge {
   std::vector<Vec3> accel_;     // per own vehicle: filtered local acceleration, m/s^2
   std::vector<float> yaw_rate_;  // per own vehicle: this tick's heading change, rad/s
   std::vector<DrAnchor> anchors_;  // per own vehicle: its last exact DR test (dr_bound.hpp)
+  // per own vehicle: dr_quick(anchors_[i], pubs_[i]), made again whenever either changes (the
+  // serial loop of publish_vehicles); all that the per-vehicle pass reads of them
+  std::vector<DrQuick> quick_;
   std::vector<std::vector<std::uint32_t>> due_;  // per range of own vehicles: not removed, and the Entity State maybe due
   std::vector<std::vector<std::uint32_t>> altered_;  // per range: those of due_ whose damage or group changed
   std::vector<size_t> altered_at_;  // this tick: the changed vehicles' places in order_, ascending

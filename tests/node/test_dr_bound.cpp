@@ -9,6 +9,7 @@
 
 #include "node/dr_bound.hpp"
 #include "node/net_bridge.hpp"
+#include "node/pdu_build.hpp"
 #include "node/simulation.hpp"
 #include "support/fixture.hpp"
 #include "support/scratch.hpp"
@@ -92,6 +93,55 @@ TEST(DrBound, CurvatureAndFrameTurnBoundsHoldOnTheDefaultWorld) {
     worst_rot = std::max(worst_rot, turn / (node::kFrameTurnPerM * nd + node::kBoundEpsRad));
   }
   std::printf("worst share of the bound used: position %.3f, orientation %.3f\n", worst_pos, worst_rot);
+}
+
+// The bound as net out reads it (DrQuick: the position term in the local frame) says quiet only
+// when the exact test says None: a vehicle anywhere on the map sends its state (with a little
+// acceleration and yaw rate), then goes on near that track, with up to two exact tests between
+// that send nothing (the anchor moves on), and is checked at the end.
+TEST(DrBound, QuietOnlyWhenTheExactTestSaysNone) {
+  world::World w = crowd_world();
+  const net::DrThresholds th = node::dr_thresholds(node::BridgeOptions{}.timeout_s);
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> map(1000, 49000), u(-1, 1), gap(0, 2.4);
+  int e = 0;
+  while (w.kinds[w.ents.kind[e]].mobility != world::Mobility::Ground) ++e;
+  auto& ents = w.ents;
+  int quiet = 0, none = 0;
+  const int cases = 20000;
+  for (int k = 0; k < cases; ++k) {
+    const double x = map(rng), y = map(rng);
+    ents.pos[e] = Vec3(x, y, w.terrain.height(x, y));
+    ents.heading_deg[e] = static_cast<float>(180 * u(rng));
+    ents.pitch_deg[e] = static_cast<float>(10 * u(rng)), ents.roll_deg[e] = static_cast<float>(10 * u(rng));
+    ents.vel[e] = Vec3(15 * u(rng), 15 * u(rng), 0.5 * u(rng));
+    net::DrPublisher pub(net::DrAlgorithm::RVW, th);
+    node::DrAnchor a;
+    double t = 10 + gap(rng);
+    net::KinematicState s = node::exact_state(w, e, a);
+    s.acceleration = a.jac * Vec3(0.02 * u(rng), 0.02 * u(rng), 0.005 * u(rng));
+    s.angular_velocity = Vec3(0, 0, 0.01 * u(rng));
+    pub.mark_sent(s, t);
+    node::dr_rebase(s, pub, t, a);
+    const int steps = 1 + static_cast<int>(rng() % 3);
+    for (int j = 0; j < steps; ++j) {
+      const double dt = gap(rng);
+      t += dt;
+      ents.pos[e] += ents.vel[e] * dt + Vec3(u(rng), u(rng), u(rng)) * 0.5;
+      ents.heading_deg[e] += static_cast<float>(0.4 * u(rng));
+      ents.pitch_deg[e] += static_cast<float>(0.4 * u(rng)), ents.roll_deg[e] += static_cast<float>(0.4 * u(rng));
+      if (j + 1 < steps) node::dr_rebase(node::exact_state(w, e, a), pub, t, a);
+    }
+    const bool q = node::dr_quiet(node::dr_quick(a, pub), w, e, t);
+    const auto reason = pub.needs_update(node::entity_truth(w, e), t);
+    none += reason == net::DrPublisher::Reason::None;
+    if (!q) continue;
+    ++quiet;
+    ASSERT_EQ(reason, net::DrPublisher::Reason::None) << "case " << k << " at " << ents.pos[e].transpose() << ", t " << t;
+  }
+  std::printf("%d cases: the exact test says None in %d, the bound says quiet in %d\n", cases, none, quiet);
+  EXPECT_GT(quiet, cases / 10) << "the bound should clear a good share of the vehicles near their track";
+  EXPECT_GT(quiet * 2, none) << "and most of those the exact test clears";
 }
 
 TEST(DrBound, CrowdSendsTheSameEntityStatesAsTheExactTestEveryTick) {
