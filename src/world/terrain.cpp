@@ -308,6 +308,29 @@ Terrain::Terrain(int cols, int rows, double spacing_m, std::vector<float> height
   if (h_.size() != static_cast<size_t>(cols) * rows)
     throw std::invalid_argument("Terrain: heights size is not cols * rows");
   frame_ = geo::LocalFrame(origin, width_m(), depth_m());
+  block_cols_ = (cols_ - 2) / kBlock + 1;
+  const long block_rows = (rows_ - 2) / kBlock + 1;
+  block_lo_.assign(static_cast<size_t>(block_cols_ * block_rows), 0.0);
+  bound_blocks(0, 0, block_cols_ - 1, block_rows - 1);
+}
+
+void Terrain::bound_blocks(long bi0, long bj0, long bi1, long bj1) {
+  for (long bj = bj0; bj <= bj1; ++bj)
+    for (long bi = bi0; bi <= bi1; ++bi) {
+      // The posts of the block's cells and of the cells one around them.
+      const long i0 = std::max(0L, bi * kBlock - 1), i1 = std::min<long>(cols_ - 1, bi * kBlock + kBlock + 1);
+      const long j0 = std::max(0L, bj * kBlock - 1), j1 = std::min<long>(rows_ - 1, bj * kBlock + kBlock + 1);
+      double lo = std::numeric_limits<double>::infinity(), big = 0;
+      bool finite = true;
+      for (long j = j0; j <= j1; ++j)
+        for (long i = i0; i <= i1; ++i) {
+          const double p = post(static_cast<int>(i), static_cast<int>(j));
+          finite = finite && std::isfinite(p);
+          lo = std::min(lo, p), big = std::max(big, std::abs(p));
+        }
+      block_lo_[static_cast<size_t>(bj * block_cols_ + bi)] =
+          finite ? lo - 1e-9 * big : -std::numeric_limits<double>::infinity();
+    }
 }
 
 Terrain Terrain::load(const std::filesystem::path& file, const geo::Geodetic& origin) {
@@ -376,6 +399,11 @@ PostRect Terrain::crater(double cx, double cy, double radius_m, double depth_m) 
       changed.i1 = std::max(changed.i1, i);
       changed.j1 = std::max(changed.j1, j);
     }
+  }
+  if (any) {  // the blocks whose posts (their cells' and the cells' around) were lowered
+    const long last_i = (cols_ - 2) / kBlock, last_j = (rows_ - 2) / kBlock;
+    bound_blocks(std::max(0L, (changed.i0 - 1L - kBlock) / kBlock), std::max(0L, (changed.j0 - 1L - kBlock) / kBlock),
+                 std::min(last_i, (changed.i1 + 1L) / kBlock), std::min(last_j, (changed.j1 + 1L) / kBlock));
   }
   return changed;
 }

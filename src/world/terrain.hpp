@@ -62,6 +62,20 @@ class Terrain {
     const D4 r = (h00 * (1 - fx) + h10 * fx) * (1 - fy) + (h01 * (1 - fx) + h11 * fx) * fy;
     for (int k = 0; k < 4; ++k) h[k] = r[k];
   }
+  // True only when height(x, y) > level for certain (World::is_water asks it first: most of a
+  // map is well above its water, and height() is two divisions and four posts). kBlock x kBlock
+  // cells share one bound: the lowest post of their cells and of the cells around them, less a
+  // billionth of the largest |post| there (the bilinear sum's rounding is below 1e-15 of it), so
+  // that the cell this finds by the spacing's reciprocal, at most one off the cell height()
+  // divides out, is covered. False when unsure (NaN, far off the map, near the level).
+  bool surely_above(double x, double y, double level) const {
+    const double u = x * inv_spacing_, v = y * inv_spacing_;
+    if (!(std::abs(u) < 1e9 && std::abs(v) < 1e9) || block_lo_.empty()) return false;
+    const long i = std::clamp(static_cast<long>(u), 0L, static_cast<long>(cols_ - 2)) / kBlock;
+    const long j = std::clamp(static_cast<long>(v), 0L, static_cast<long>(rows_ - 2)) / kBlock;
+    return block_lo_[static_cast<size_t>(j * block_cols_ + i)] > level;
+  }
+  static constexpr int kBlock = 8;  // cells a side that share surely_above's bound
   // Asks the cache for the two rows of posts height(x, y) reads (core/prefetch.hpp): a hint that
   // changes no result, for a loop over entities scattered over the map to call a few entities
   // ahead (at 100,000 vehicles the first height() of each otherwise waits on memory; the 50 km
@@ -94,8 +108,13 @@ class Terrain {
 
  private:
   int cols_ = 0, rows_ = 0;
-  double spacing_ = 1, inv_spacing_ = 1;  // (inv_spacing_: prefetch's only)
+  double spacing_ = 1, inv_spacing_ = 1;  // (inv_spacing_: prefetch's and surely_above's only)
   std::vector<float> h_;
+  // surely_above's bound of each block of kBlock x kBlock cells (row-major, block_cols_ a row);
+  // made by the constructor, kept by crater() for the blocks whose posts it lowered.
+  long block_cols_ = 0;
+  std::vector<double> block_lo_;
+  void bound_blocks(long bi0, long bj0, long bi1, long bj1);
   geo::Geodetic origin_;
   geo::LocalFrame frame_;
 };

@@ -113,7 +113,10 @@ struct World {
   // Computes every fixed object's reach (its kind's models, every state, with the margin the
   // collision tiers use) and builds the grid; call after adding fixed objects.
   void index_fixed();
-  bool is_water(double x, double y) const { return terrain.height(x, y) < water_level_m; }
+  // (Terrain::surely_above first: the same answer, most places without height()'s divisions.)
+  bool is_water(double x, double y) const {
+    return !terrain.surely_above(x, y, water_level_m) && terrain.height(x, y) < water_level_m;
+  }
   const Kind& kind_of_entity(size_t i) const { return kinds[ents.kind[i]]; }
   bool is_munition(size_t i) const { return kind_of_entity(i).mobility == Mobility::Munition; }
 };

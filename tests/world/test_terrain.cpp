@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -140,6 +141,51 @@ TEST(Terrain, HeightsFourAtOnceGiveTheBitsOfHeight) {
       ASSERT_EQ(std::memcmp(&got[k], &want, sizeof want), 0) << x[k] << " " << y[k] << ": " << got[k] << " " << want;
     }
   }
+}
+
+TEST(Terrain, SurelyAboveOnlyWhereTheHeightIsAbove) {
+  // surely_above (World::is_water's shortcut) against height(): a valley across several blocks of
+  // cells, a spacing whose reciprocal rounds (so the cell found by multiplying is sometimes one
+  // off), points on post lines and off the map, levels from below the lowest post to above the
+  // highest, and again after craters have cut below them.
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const int cols = 41, rows = 37;
+  const double s = 12.3;
+  std::vector<float> h(static_cast<size_t>(cols) * rows);
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < cols; ++i)
+      h[static_cast<size_t>(j) * cols + i] = static_cast<float>(200.0 + 0.02 * (i - 20) * (i - 20) + 3.0 * u(rng));
+  Terrain t(cols, rows, s, std::move(h), {35.98, -121.25, 0});
+  std::vector<double> xs, ys;
+  for (int i = 0; i < cols; ++i) xs.push_back(i * s), xs.push_back(std::nextafter(i * s, 0.0)), xs.push_back(std::nextafter(i * s, 1e9));
+  for (int j = 0; j < rows; ++j) ys.push_back(j * s), ys.push_back(std::nextafter(j * s, 0.0));
+  for (double v : {-1e12, -5.0, t.width_m() + 7, 1e12, std::numeric_limits<double>::quiet_NaN()}) xs.push_back(v), ys.push_back(v);
+  for (int k = 0; k < 3000; ++k) xs.push_back(-30 + (t.width_m() + 60) * u(rng)), ys.push_back(-30 + (t.depth_m() + 60) * u(rng));
+  auto check = [&](const char* when, double share) {
+    int above = 0, said = 0;
+    for (const double level : {150.0, 199.0, 200.5, 201.0, 202.0, 204.0, 210.0, 230.0})
+      for (size_t a = 0; a < xs.size(); ++a) {
+        const double x = xs[a], y = ys[(a * 7 + static_cast<size_t>(level)) % ys.size()];
+        if (std::isnan(x) || std::isnan(y)) {
+          EXPECT_FALSE(t.surely_above(x, y, level));
+          continue;
+        }
+        const double z = t.height(x, y);
+        above += z > level;
+        if (!t.surely_above(x, y, level)) continue;
+        ++said;
+        ASSERT_GT(z, level) << when << ": at " << x << ", " << y << " level " << level;
+      }
+    std::printf("%s: %d of %d points above their level answered\n", when, said, above);
+    EXPECT_GT(said, share * above) << when << ": the bound should answer for most points well above";
+  };
+  check("as loaded", 0.5);
+  EXPECT_TRUE(t.surely_above(100.0, 100.0, 150.0));
+  for (int k = 0; k < 6; ++k) t.crater(t.width_m() * u(rng), t.depth_m() * u(rng), 20 + 30 * u(rng), 15.0);
+  t.crater(0.0, 0.0, 40.0, 30.0);  // a corner
+  t.crater(t.width_m(), t.depth_m(), 40.0, 30.0);
+  check("after craters", 0.3);  // (a crater lowers the bound of the blocks around it)
 }
 
 TEST(Terrain, NormalOn30DegreeSlope) {
