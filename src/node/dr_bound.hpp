@@ -54,8 +54,9 @@ struct DrAnchor {
 // sigma >= J's largest singular value (the square root of JtJ's largest row sum of magnitudes,
 // times 1 + 1e-12), s1, s2 db's factors of the sent velocity and acceleration, and |rho| at most
 // the solves' residuals times the largest s1, s2 a quiet vehicle can have (a heartbeat: since
-// the anchor is at or after the last send), taken off the position threshold (pos_limit). Not
-// tighter than the ECEF form, never looser: a vehicle may go to the exact test a little sooner.
+// the anchor is at or after the last send), taken off the position threshold (pos_limit). Its
+// bound is not below the ECEF form's (sigma >= 1 here, rho added), so a vehicle may go to the
+// exact test a tick sooner than with that form, and the PDUs are the same.
 struct alignas(64) DrQuick {
   Vec3 p = Vec3::Zero();                        // the anchor's local position (m)
   Vec3 err = Vec3::Zero();                      // J^-1 E (local m)

@@ -67,13 +67,13 @@ class Terrain {
   // cells share one bound: the lowest post of their cells and of the cells around them, less a
   // billionth of the largest |post| there (the bilinear sum's rounding is below 1e-15 of it), so
   // that the cell this finds by the spacing's reciprocal, at most one off the cell height()
-  // divides out, is covered. False when unsure (NaN, far off the map, near the level).
+  // divides out, is covered (off the map: its edge cell, as height()). False when unsure (x or y
+  // not finite, or the level near).
   bool surely_above(double x, double y, double level) const {
-    const double u = x * inv_spacing_, v = y * inv_spacing_;
-    if (!(std::abs(u) < 1e9 && std::abs(v) < 1e9) || block_lo_.empty()) return false;
-    const long i = std::clamp(static_cast<long>(u), 0L, static_cast<long>(cols_ - 2)) / kBlock;
-    const long j = std::clamp(static_cast<long>(v), 0L, static_cast<long>(rows_ - 2)) / kBlock;
-    return block_lo_[static_cast<size_t>(j * block_cols_ + i)] > level;
+    if (!(std::isfinite(x) && std::isfinite(y)) || block_lo_.empty()) return false;
+    long i, j;
+    near_cell(x, y, i, j);
+    return block_lo_[static_cast<size_t>((j / kBlock) * block_cols_ + i / kBlock)] > level;
   }
   static constexpr int kBlock = 8;  // cells a side that share surely_above's bound
   // Asks the cache for the two rows of posts height(x, y) reads (core/prefetch.hpp): a hint that
@@ -82,9 +82,8 @@ class Terrain {
   // map's posts are 2.5 MB). Any x, y: NaN and infinities clamp like the map's edges.
   // (A hint: the spacing's reciprocal, not a division; a post off by one is still a hint.)
   void prefetch(double x, double y) const {
-    const double u = x * inv_spacing_, v = y * inv_spacing_, ui = cols_ - 2, vj = rows_ - 2;
-    const long i = static_cast<long>(u > 0 ? (u < ui ? u : ui) : 0);  // NaN: 0
-    const long j = static_cast<long>(v > 0 ? (v < vj ? v : vj) : 0);
+    long i, j;
+    near_cell(x, y, i, j);
     const float* p = h_.data() + (j * cols_ + i);
     core::prefetch(p);
     core::prefetch(p + cols_);
@@ -115,6 +114,13 @@ class Terrain {
   long block_cols_ = 0;
   std::vector<double> block_lo_;
   void bound_blocks(long bi0, long bj0, long bi1, long bj1);
+  // The cell (i, j) of (x, y) by the spacing's reciprocal, clamped to the map (NaN: 0): the cell
+  // height() divides out, or one beside it (prefetch's and surely_above's).
+  void near_cell(double x, double y, long& i, long& j) const {
+    const double u = x * inv_spacing_, v = y * inv_spacing_, ui = cols_ - 2, vj = rows_ - 2;
+    i = static_cast<long>(u > 0 ? (u < ui ? u : ui) : 0);  // NaN: 0
+    j = static_cast<long>(v > 0 ? (v < vj ? v : vj) : 0);
+  }
   geo::Geodetic origin_;
   geo::LocalFrame frame_;
 };
