@@ -33,7 +33,7 @@ inline T atan_series(T t) {
 // The float d rounds to when its tolerance does not matter, else the libm expression's.
 inline float atan2_deg_float_of(double y, double x, double atan_yx) {
   if (y == 0) return static_cast<float>(y);
-  const double d = atan_yx * (180.0 / kPi);
+  const double d = atan_yx * (180.0 / kPi);  // (not rad2deg's division: d only picks the float)
   const double tol = 1e-12 * std::abs(d);
   const float lo = static_cast<float>(d - tol), hi = static_cast<float>(d + tol);
   if (lo == hi) return lo;

@@ -71,12 +71,9 @@ struct alignas(64) DrQuick {
 };
 DrQuick dr_quick(const DrAnchor& a, const net::DrPublisher& pub);
 
-// Whether the exact test at state time t is certain to say None for entity e, published by pub
-// (the second form: dr_quick(a, pub) made beforehand).
+// Whether the exact test at state time t is certain to say None for entity e, published by the
+// publisher q was made from (q = dr_quick(anchor, publisher)).
 bool dr_quiet(const DrQuick& q, const world::World& w, int e, double t);
-inline bool dr_quiet(const DrAnchor& a, const net::DrPublisher& pub, const world::World& w, int e, double t) {
-  return dr_quiet(dr_quick(a, pub), w, e, t);
-}
 
 // The exact state of e (entity_truth) and a new anchor for it, not valid until dr_rebase gives
 // it its errors: against the publisher's believed pose when the state is not sent, or the new
