@@ -35,10 +35,11 @@
 //    publishing (acceleration filter, yaw rate, the dead-reckoning bound of dr_bound.hpp) runs on
 //    the Simulation's worker threads (Simulation::jobs), each vehicle into its own slot; then, in
 //    order on the tick's thread, the vehicles the bound cannot clear get their exact ECEF state
-//    and DR test and are sent: the same PDUs for any thread count. The exact states (geodesy)
-//    are computed on the workers too, a batch ahead of that loop in its order, each into its own
-//    slot; the loop takes a vehicle's when it reaches it (the same state and anchor it would
-//    compute there; those it does not reach are dropped).
+//    and DR test and are sent: the same PDUs for any thread count. The exact tests (geodesy,
+//    the DR test, and for its outcome the publisher's next state, the new anchor and the Entity
+//    State) are made on the workers too, a batch ahead of that loop in its order, each into its
+//    own slot; the loop takes a vehicle's when it reaches it (what it would compute there; those
+//    it does not reach are dropped) and only sends, in order.
 //  * Net out cost: a vehicle is turned into ECEF / DIS terms (geodesy) only when it may need an
 //    Entity State (dr_bound.hpp: exactly the vehicles the exact DR test would send, never an
 //    approximation), when its damage or cell changed, or when it is sent; past the per-tick cap
@@ -229,7 +230,7 @@ class NetBridge {
   void on_fire(const net::FirePdu& p);
   void on_detonation(const net::DetonationPdu& p, double arrival_s);
   void publish_vehicles();
-  void digest_entity_state();  // es_ into es_digest_
+  void digest_entity_state(const net::EntityStatePdu& es);  // into es_digest_
   void publish_collisions(const TickReport& r);
   void publish_fixed(const TickReport& r);
   void start_publishing(int o);  // object o joins fixed_published_ (sent each heartbeat from now)
@@ -242,6 +243,7 @@ class NetBridge {
   void on_stop_freeze(const net::StopFreezePdu& p);
   void on_start_resume(const net::StartResumePdu& p);
   void on_remove_entity(const net::RemoveEntityPdu& p);
+  bool pack(const net::EntityStatePdu& es);  // into batch_ (flushed when full); false: too big
   void flush_batch();
   void report_clash();
   // Reads the socket into receive(), each datagram dated as the contract says (Receive).
@@ -280,11 +282,23 @@ class NetBridge {
   std::vector<size_t> altered_at_;  // this tick: the changed vehicles' places in order_, ascending
   std::vector<std::uint8_t> changed_;  // per own vehicle: this tick, damage or group not as last sent
   std::vector<std::uint32_t> order_;  // this tick's own vehicles not skipped, in round-robin order
-  struct Tested {                     // an exact test made ahead on the pool (vehicle_publish.cpp)
-    DrAnchor anchor;
+  // One vehicle's exact test (vehicle_publish.cpp), made by test_vehicle on the pool ahead of
+  // the serial loop or by the loop itself: its exact state and that state's anchor (exact_state),
+  // whether it is to be sent (damage or group changed, a quick repeat due, or the DR test), and
+  // what the vehicle's publisher, anchor and quick bound become then: sent (next_pub marked sent,
+  // es its Entity State) or not (next_anchor rebased on its publisher as it is).
+  struct Tested {
+    DrAnchor anchor, next_anchor;
     net::KinematicState state;
+    DrQuick next_quick;
+    net::DrPublisher next_pub;
+    net::EntityStatePdu es;
+    bool send = false, repeat = false;
   };
-  std::vector<Tested> tested_;
+  // Reads the world and vehicle i's fields only (any thread; writes r alone).
+  void test_vehicle(size_t i, double t, Tested& r) const;
+  std::vector<Tested> tested_;  // the batch made ahead on the pool
+  Tested tested_here_;          // one the loop makes itself
   std::uint64_t exact_tests_ = 0;   // vehicles turned into ECEF for the DR test, all ticks
   std::uint64_t es_digest_ = 1469598103934665603ull;  // FNV-1a of every Entity State sent
   std::vector<std::uint32_t> sent_group_;  // per own vehicle: the group of its last Entity State

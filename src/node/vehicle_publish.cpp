@@ -120,12 +120,13 @@ void NetBridge::publish_vehicles() {
           altered_at_.push_back(order_.size() + (std::lower_bound(from, to, i) - from));
       order_.insert(order_.end(), from, to);
     }
-  // With worker threads, the exact tests (exact_state: geodesy) of the next vehicles in that
-  // order (a batch, kMaxTestBatch) run on the pool, each into its own slot (its anchor copied
-  // first); the loop takes a vehicle's slot when it reaches it. exact_state reads the world only
-  // and writes the slot's anchor (the loop rebases it on the vehicle's publisher), so the slot
-  // holds what the loop would compute there; results the loop does not reach (past the
-  // cap) are dropped, anchors and counts untouched. Not once the cap defers all but changes.
+  // With worker threads, the exact tests of the next vehicles in that order (a batch,
+  // kMaxTestBatch) run on the pool, each into its own slot: test_vehicle, which reads the world
+  // and vehicle i's own fields only and writes the slot (the exact state and its anchor, whether
+  // the vehicle is to be sent and, for that outcome, its next publisher, anchor and Entity
+  // State). The loop takes a vehicle's slot when it reaches it: what it would compute there.
+  // Results the loop does not reach (past the cap) are dropped, nothing else touched. Not once
+  // the cap defers all but changes. Without workers the loop tests each vehicle itself.
   core::Jobs* jobs = sim_.jobs();
   size_t tested0 = 0, tested1 = 0;  // positions in order_ whose tests are in tested_
   size_t next_altered = 0;            // into altered_at_
@@ -142,42 +143,29 @@ void NetBridge::publish_vehicles() {
       continue;
     }
     const int e = own_[i];
-    const std::uint32_t app = damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]);
-    const std::uint32_t group = group_at(w.ents.pos[e]);
-    // A quick repeat of a first Entity State or of a damage change (kAnnounceRepeats).
-    const bool repeat = announce_left_[i] > 0 && t >= announce_at_[i] - 1e-9;
     if (jobs && !deferring && p >= tested1) {
       const size_t room = (!pack_ || aoi_) && opt_.dr_prefilter
                               ? (sent_now < kMaxDatagramsPerTick ? kMaxDatagramsPerTick - sent_now : 0) + 1
                               : kMaxTestBatch;
       tested0 = p, tested1 = std::min(order_.size(), p + std::clamp(room, kMinTestBatch, kMaxTestBatch));
-      tested_.resize(tested1 - tested0);
+      if (tested_.size() < tested1 - tested0) tested_.resize(tested1 - tested0);
       jobs->for_chunks(tested1 - tested0, kTestGrain, [&](int, size_t q0, size_t q1) {
-        for (size_t q = q0; q < q1; ++q) {
-          const size_t j = order_[tested0 + q];
-          tested_[q].anchor = anchors_[j];
-          tested_[q].state = exact_state(w, own_[j], tested_[q].anchor);
-        }
+        for (size_t q = q0; q < q1; ++q) test_vehicle(order_[tested0 + q], t, tested_[q]);
       });
     }
-    net::KinematicState s;
-    if (p >= tested0 && p < tested1) {
-      s = tested_[p - tested0].state;
-      anchors_[i] = tested_[p - tested0].anchor;
-    } else {
-      s = exact_state(w, e, anchors_[i]);
-    }
+    const bool ahead = p >= tested0 && p < tested1;
+    Tested& r = ahead ? tested_[p - tested0] : tested_here_;
+    if (!ahead) test_vehicle(i, t, r);
     ++exact_tests_;
-    s.acceleration = anchors_[i].jac * accel_[i];
-    s.angular_velocity = Eigen::Vector3d(0, 0, yaw_rate_[i]);
-    // Not sent (not due, deferred, the send failed): the anchor's errors are against the believed
-    // pose it keeps. Sent: against the new one (below); so exact_state leaves them to the loop.
+    // Not sent (not due: as test_vehicle made it; deferred, or the send failed: made here): the
+    // anchor's errors are against the believed pose the publisher keeps. Sent: the new one's.
     auto keep_anchor = [&] {
-      if (pubs_[i].has_sent()) dr_rebase(s, pubs_[i], t, anchors_[i]);
+      anchors_[i] = r.anchor;
+      if (pubs_[i].has_sent()) dr_rebase(r.state, pubs_[i], t, anchors_[i]);
       quick_[i] = dr_quick(anchors_[i], pubs_[i]);
     };
-    if (!changed && !repeat && pubs_[i].needs_update(s, t) == net::DrPublisher::Reason::None) {
-      keep_anchor();
+    if (!r.send) {
+      anchors_[i] = r.next_anchor, quick_[i] = r.next_quick;
       continue;
     }
     if (capped && !changed) {  // a damage change never waits
@@ -185,29 +173,19 @@ void NetBridge::publish_vehicles() {
       keep_anchor();
       continue;
     }
-    fill_entity_state(w, e, own_id(e), s, pubs_[i].algorithm(), app, static_cast<std::uint8_t>(opt_.exercise), t, es_);
-    es_.header.protocol_version = static_cast<std::uint8_t>(opt_.dis_version);  // packed datagrams too
-    if (pack_ && !aoi_) {  // several Entity States to a datagram of at most 1400 octets
-      if (!batch_.add(es_)) {
-        flush_batch();
-        if (!batch_.add(es_)) {  // cannot happen for our PDUs (no variable parameters)
-          ++session_->counters().send_failures;
-          keep_anchor();
-          continue;
-        }
-      }
-    } else if (!session_->send_to(group, es_)) {
+    // One PDU a datagram, or (pack_ without aoi_) several to a datagram of at most 1400 octets.
+    const std::uint32_t group = group_at(w.ents.pos[e]);
+    if (!(pack_ && !aoi_ ? pack(r.es) : session_->send_to(group, r.es))) {
       keep_anchor();
       continue;
     }
     if (!pubs_[i].has_sent() || changed) announce_left_[i] = kAnnounceRepeats;  // new or changed: repeat it soon
-    else if (repeat) --announce_left_[i];
+    else if (r.repeat) --announce_left_[i];
     announce_at_[i] = t + kAnnounceGapS;
-    pubs_[i].mark_sent(s, t);
-    dr_rebase(s, pubs_[i], t, anchors_[i]);
-    quick_[i] = dr_quick(anchors_[i], pubs_[i]);
-    digest_entity_state();
-    sent_appearance_[i] = app;
+    pubs_[i] = r.next_pub;  // marked sent
+    anchors_[i] = r.next_anchor, quick_[i] = r.next_quick;
+    digest_entity_state(r.es);
+    sent_appearance_[i] = r.es.appearance;
     sent_group_[i] = group;
     ++sent_now;
     if (w.kinds[w.ents.kind[e]].mobility == world::Mobility::Ground) ++ground_es_sent_;
@@ -216,19 +194,51 @@ void NetBridge::publish_vehicles() {
   flush_batch();
 }
 
-void NetBridge::digest_entity_state() {
+void NetBridge::test_vehicle(size_t i, double t, Tested& r) const {
+  const auto& w = sim_.world();
+  const int e = own_[i];
+  r.anchor = anchors_[i];
+  r.state = exact_state(w, e, r.anchor);
+  r.state.acceleration = r.anchor.jac * accel_[i];
+  r.state.angular_velocity = Eigen::Vector3d(0, 0, yaw_rate_[i]);
+  r.repeat = announce_left_[i] > 0 && t >= announce_at_[i] - 1e-9;  // kAnnounceRepeats
+  r.send = changed_[i] || r.repeat || pubs_[i].needs_update(r.state, t) != net::DrPublisher::Reason::None;
+  r.next_anchor = r.anchor;
+  if (!r.send) {
+    if (pubs_[i].has_sent()) dr_rebase(r.state, pubs_[i], t, r.next_anchor);
+    r.next_quick = dr_quick(r.next_anchor, pubs_[i]);
+    return;
+  }
+  r.next_pub = pubs_[i];
+  r.next_pub.mark_sent(r.state, t);
+  dr_rebase(r.state, r.next_pub, t, r.next_anchor);
+  r.next_quick = dr_quick(r.next_anchor, r.next_pub);
+  const std::uint32_t app = damage_appearance(w.kinds[w.ents.kind[e]], w.ents.state[e]);
+  fill_entity_state(w, e, own_id(e), r.state, pubs_[i].algorithm(), app, static_cast<std::uint8_t>(opt_.exercise), t, r.es);
+  r.es.header.protocol_version = static_cast<std::uint8_t>(opt_.dis_version);  // packed datagrams too
+}
+
+void NetBridge::digest_entity_state(const net::EntityStatePdu& es) {
   auto mix = [&](const void* p, size_t len) {
     const auto* b = static_cast<const unsigned char*>(p);
     for (size_t k = 0; k < len; ++k) es_digest_ = (es_digest_ ^ b[k]) * 1099511628211ull;
   };
-  mix(&es_.entity_id.entity, sizeof es_.entity_id.entity);
-  mix(&es_.location, sizeof es_.location);
-  mix(&es_.linear_velocity, sizeof es_.linear_velocity);
-  mix(&es_.orientation, sizeof es_.orientation);
-  mix(&es_.dead_reckoning.linear_acceleration, sizeof es_.dead_reckoning.linear_acceleration);
-  mix(&es_.dead_reckoning.angular_velocity, sizeof es_.dead_reckoning.angular_velocity);
-  mix(&es_.appearance, sizeof es_.appearance);
-  mix(&es_.header.timestamp, sizeof es_.header.timestamp);
+  mix(&es.entity_id.entity, sizeof es.entity_id.entity);
+  mix(&es.location, sizeof es.location);
+  mix(&es.linear_velocity, sizeof es.linear_velocity);
+  mix(&es.orientation, sizeof es.orientation);
+  mix(&es.dead_reckoning.linear_acceleration, sizeof es.dead_reckoning.linear_acceleration);
+  mix(&es.dead_reckoning.angular_velocity, sizeof es.dead_reckoning.angular_velocity);
+  mix(&es.appearance, sizeof es.appearance);
+  mix(&es.header.timestamp, sizeof es.header.timestamp);
+}
+
+bool NetBridge::pack(const net::EntityStatePdu& es) {
+  if (batch_.add(es)) return true;
+  flush_batch();
+  if (batch_.add(es)) return true;
+  ++session_->counters().send_failures;  // cannot happen for our PDUs (no variable parameters)
+  return false;
 }
 
 void NetBridge::flush_batch() {
