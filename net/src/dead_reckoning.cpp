@@ -142,17 +142,19 @@ void write_kinematics(const KinematicState& s, DrAlgorithm algorithm, EntityStat
                          static_cast<float>(s.angular_velocity.z())};
 }
 
-DrPublisher::Reason DrPublisher::needs_update(const KinematicState& truth,
-                                              double now_s) const noexcept {
-  if (!has_sent_) return Reason::First;
-  const Pose believed = believed_pose(now_s);
-  if ((truth.position - believed.position).norm() > thresholds_.position_threshold_m)
-    return Reason::Position;
-  if (orientation_error_rad(truth.orientation, believed.orientation) >
-      thresholds_.orientation_threshold_rad)
-    return Reason::Orientation;
-  if (now_s - last_sent_s_ >= thresholds_.heartbeat_s) return Reason::Heartbeat;
-  return Reason::None;
+DrPublisher::Test DrPublisher::test(const KinematicState& truth, double now_s) const noexcept {
+  Test r;
+  if (!has_sent_) return r;  // Reason::First
+  r.believed = believed_pose(now_s);
+  if ((truth.position - r.believed.position).norm() > thresholds_.position_threshold_m) {
+    r.reason = Reason::Position;
+    return r;
+  }
+  r.orientation_error_rad = orientation_error_rad(truth.orientation, r.believed.orientation);
+  r.reason = r.orientation_error_rad > thresholds_.orientation_threshold_rad ? Reason::Orientation
+             : now_s - last_sent_s_ >= thresholds_.heartbeat_s                ? Reason::Heartbeat
+                                                                              : Reason::None;
+  return r;
 }
 
 void DrPublisher::mark_sent(const KinematicState& sent, double now_s) noexcept {

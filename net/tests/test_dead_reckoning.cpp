@@ -151,6 +151,33 @@ TEST(DrPublisher, OrientationThresholdAndHeartbeat) {
   EXPECT_EQ(pub.needs_update(truth, 15.0), net::DrPublisher::Reason::Heartbeat);
 }
 
+TEST(DrPublisher, TestGivesWhatItCompared) {
+  net::DrPublisher pub(net::DrAlgorithm::RVW);
+  net::KinematicState sent;
+  sent.position = {1000, 2000, 3000};
+  sent.velocity = {10, 0, 0};
+  sent.orientation = {0.3, 0.05, -0.02};
+  sent.angular_velocity = {0, 0, 0.1};
+  EXPECT_EQ(pub.test(sent, 0.0).reason, net::DrPublisher::Reason::First);
+  EXPECT_TRUE(std::isnan(pub.test(sent, 0.0).orientation_error_rad));
+  pub.mark_sent(sent, 0.0);
+  net::KinematicState truth = sent;
+  truth.position += Vector3d(5.0, 0.3, 0);
+  truth.orientation.psi += 0.05;
+  const auto near = pub.test(truth, 0.5);  // on its track but 0.3 m off, turned as sent
+  EXPECT_EQ(near.reason, net::DrPublisher::Reason::None);
+  EXPECT_EQ(near.reason, pub.needs_update(truth, 0.5));
+  const net::Pose b = pub.believed_pose(0.5);
+  EXPECT_EQ(near.believed.position, b.position);  // the same bits
+  EXPECT_EQ(near.believed.orientation.psi, b.orientation.psi);
+  EXPECT_EQ(near.orientation_error_rad, net::orientation_error_rad(truth.orientation, b.orientation));
+  EXPECT_LT(near.orientation_error_rad, 0.01);
+  truth.position.y() += 1.0;  // the position decides: no orientation error computed
+  const auto far = pub.test(truth, 0.5);
+  EXPECT_EQ(far.reason, net::DrPublisher::Reason::Position);
+  EXPECT_TRUE(std::isnan(far.orientation_error_rad));
+}
+
 TEST(DrPublisher, SimulatedRunSendsFarFewerThanEveryTick) {
   // A vehicle driving a circle of radius 200 m at 10 m/s for 60 s, 10 Hz ticks. Counting sends
   // and checking the believed pose never strays more than the threshold (plus one tick of motion).

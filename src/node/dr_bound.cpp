@@ -62,9 +62,15 @@ bool dr_quiet(const DrQuick& q, const world::World& w, int e, double t) {
 }
 
 void dr_rebase(const net::KinematicState& s, const net::DrPublisher& pub, double t, DrAnchor& a) {
-  const net::Pose b = pub.believed_pose(t);
-  a.err = Vec3(s.position - b.position);
-  a.theta = net::orientation_error_rad(s.orientation, b.orientation);
+  net::DrPublisher::Test test;
+  test.believed = pub.believed_pose(t);
+  test.orientation_error_rad = net::orientation_error_rad(s.orientation, test.believed.orientation);
+  dr_rebase(s, test, t, a);
+}
+
+void dr_rebase(const net::KinematicState& s, const net::DrPublisher::Test& test, double t, DrAnchor& a) {
+  a.err = Vec3(s.position - test.believed.position);
+  a.theta = test.orientation_error_rad;
   a.t = t;
   a.valid = true;
 }

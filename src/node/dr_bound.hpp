@@ -82,5 +82,8 @@ net::KinematicState exact_state(const world::World& w, int e, DrAnchor& a);
 // The anchor's errors, of the exact state s at t, against pub's believed pose then (after a send:
 // the new one). Only once pub has sent (before, the anchor stays not valid).
 void dr_rebase(const net::KinematicState& s, const net::DrPublisher& pub, double t, DrAnchor& a);
+// The same from what pub.test(s, t) compared when it said None (its believed pose and
+// orientation error): the same anchor, without computing them again.
+void dr_rebase(const net::KinematicState& s, const net::DrPublisher::Test& test, double t, DrAnchor& a);
 
 }  // namespace npsnet::node

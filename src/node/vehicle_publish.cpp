@@ -202,12 +202,16 @@ void NetBridge::test_vehicle(size_t i, double t, Tested& r) const {
   r.state.acceleration = r.anchor.jac * accel_[i];
   r.state.angular_velocity = Eigen::Vector3d(0, 0, yaw_rate_[i]);
   r.repeat = announce_left_[i] > 0 && t >= announce_at_[i] - 1e-9;  // kAnnounceRepeats
-  r.send = changed_[i] || r.repeat || pubs_[i].needs_update(r.state, t) != net::DrPublisher::Reason::None;
+  r.send = changed_[i] || r.repeat;
   r.next_anchor = r.anchor;
-  if (!r.send) {
-    if (pubs_[i].has_sent()) dr_rebase(r.state, pubs_[i], t, r.next_anchor);
-    r.next_quick = dr_quick(r.next_anchor, pubs_[i]);
-    return;
+  if (!r.send) {  // the DR test decides; when it says None its errors are the new anchor's
+    const net::DrPublisher::Test test = pubs_[i].test(r.state, t);
+    r.send = test.reason != net::DrPublisher::Reason::None;
+    if (!r.send) {
+      dr_rebase(r.state, test, t, r.next_anchor);  // (None: the publisher has sent)
+      r.next_quick = dr_quick(r.next_anchor, pubs_[i]);
+      return;
+    }
   }
   r.next_pub = pubs_[i];
   r.next_pub.mark_sent(r.state, t);

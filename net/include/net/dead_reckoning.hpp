@@ -20,10 +20,10 @@
 //    now: first time, |true - dead-reckoned| position error > position_threshold_m, orientation
 //    error > orientation_threshold_rad, or heartbeat_s since the last send (>=).
 #pragma once
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <limits>
 
 #include "net/pdu.hpp"
 
@@ -93,7 +93,15 @@ class DrPublisher {
       : algorithm_(algorithm), thresholds_(t) {}
 
   // Why an update is due at now_s given the entity's true state, or Reason::None.
-  Reason needs_update(const KinematicState& truth, double now_s) const noexcept;
+  Reason needs_update(const KinematicState& truth, double now_s) const noexcept { return test(truth, now_s).reason; }
+  // The same test and what it compared: the believed pose at now_s (once sent) and the
+  // orientation error against it (rad; NaN when the position alone decided).
+  struct Test {
+    Reason reason = Reason::First;
+    Pose believed;
+    double orientation_error_rad = std::numeric_limits<double>::quiet_NaN();
+  };
+  Test test(const KinematicState& truth, double now_s) const noexcept;
   // Record that `sent` went out at now_s (call after sending the ESPDU).
   void mark_sent(const KinematicState& sent, double now_s) noexcept;
   // What receivers currently believe (the dead-reckoned last sent state at now_s).
