@@ -18,8 +18,10 @@
 // be the same bytes, else the bench stops). Before and after, the machine is probed (MachineProbe:
 // cache and memory latency, whether two threads run as fast as one, how fast a cache line passes
 // between the CPUs), and that and the CPUs the tick's thread ran on are printed and written as
-// comment lines at the end of the CSV. Past 32,767 entities the node numbers its entities
-// under several DIS applications (node/ownership.hpp), so the whole tick is measured at every N.
+// comment lines at the end of the CSV, with the host's steal during each N's timed ticks
+// (CpuClock: the share of the guest's CPU time the hypervisor took back; also printed on each
+// N's line). Past 32,767 entities the node numbers its entities under several DIS applications
+// (node/ownership.hpp), so the whole tick is measured at every N.
 // Usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T] [--stages]]
 //   default N = 500 ... 200,000 -> bench/results/tick_scaling.csv; --quick: 500 and 5,000, no CSV;
 //   --n without --csv: no CSV (the committed one is the chart of every N).
@@ -89,6 +91,33 @@ struct StageClock {
     last = now;
   }
 };
+
+// The host's steal: of all the guest's CPU time (/proc/stat's "cpu" line: user ... steal, in
+// clock ticks), the share the hypervisor gave to something else while a vCPU had work. On this
+// KVM guest the slow minutes are the ones the host takes back: 12 % of a 2-thread run of 100,000
+// vehicles at 21:15 UTC, 7 Dec, when its tick took 27-30 ms against 14 in a calm minute.
+struct CpuClock {
+  unsigned long long steal = 0, all = 0;
+  static CpuClock now() {
+    CpuClock c;
+    std::ifstream in("/proc/stat");
+    std::string cpu;
+    unsigned long long v[8] = {};
+    if (in >> cpu && cpu == "cpu")
+      for (int k = 0; k < 8 && in >> v[k]; ++k) c.all += v[k];
+    c.steal = v[7];
+    return c;
+  }
+  // Per cent of the CPU time since `from` that was stolen (-1: no /proc/stat).
+  double steal_pct_since(const CpuClock& from) const {
+    return all > from.all ? 100.0 * static_cast<double>(steal - from.steal) / static_cast<double>(all - from.all) : -1;
+  }
+};
+std::string stolen_text(double pct) {
+  char b[64];
+  std::snprintf(b, sizeof b, "host steal %.1f %%", pct);
+  return pct < 0 ? "host steal unknown" : b;
+}
 
 // Ticks whose thread was on each CPU at their end (sched_getcpu), over the whole run.
 constexpr int kCpus = 64;
@@ -352,6 +381,7 @@ int main(int argc, char** argv) {
   }
   const MachineProbe before = MachineProbe::take();
   std::printf("machine before: %s\n", before.text().c_str());
+  std::string steal_by_n;  // "N: x %, ..." for the CSV
   std::printf("%8s %9s %6s | %-27s | %-27s | %s\n", "N", "entities", "ticks", "whole tick ms: 1t, 2t, x",
               "net off ms: 1t, 2t, x", "collisions");
   for (int n : ns) {
@@ -375,9 +405,12 @@ int main(int argc, char** argv) {
       pin_tick_thread(true);
       for (int i = 0; i < warm; ++i) nd.sim.tick();
       if (stages) nd.time_stages();
+      const CpuClock c0 = CpuClock::now();
       for (int i = 0; i < ticks; ++i) nd.timed_tick(prewake);
-      std::printf("%8d %9zu %6d | %s, %d thread(s): median %.3f ms, cpu %.3f ms | %d\n", n, w.ents.size(), ticks,
-                  one_net ? "net on" : "net off", one_threads, nd.median(), nd.cpu_median(), nd.collisions());
+      const double stolen = CpuClock::now().steal_pct_since(c0);
+      std::printf("%8d %9zu %6d | %s, %d thread(s): median %.3f ms, cpu %.3f ms | %d | %s\n", n, w.ents.size(), ticks,
+                  one_net ? "net on" : "net off", one_threads, nd.median(), nd.cpu_median(), nd.collisions(),
+                  stolen_text(stolen).c_str());
       if (nd.bridge)  // what net out sent: the same bits before and after a change to it
         std::printf("  Entity States: digest %016llx, %llu exact DR tests, %llu ground vehicles' sent\n",
                     static_cast<unsigned long long>(nd.bridge->entity_state_digest()),
@@ -398,8 +431,11 @@ int main(int argc, char** argv) {
     pin_tick_thread(true);
     for (auto& nd : nodes)
       for (int i = 0; i < warm; ++i) nd->sim.tick();
+    const CpuClock c0 = CpuClock::now();
     for (int i = 0; i < ticks; ++i)
       for (auto& nd : nodes) nd->timed_tick(prewake);
+    const double stolen = CpuClock::now().steal_pct_since(c0);
+    steal_by_n += (steal_by_n.empty() ? "" : ", ") + std::to_string(n) + ": " + stolen_text(stolen).substr(11);
     for (size_t k = 0; k < nodes.size(); k += 2)
       if (nodes[k]->events() != nodes[k + 1]->events()) {
         std::fprintf(stderr, "N = %d: the event logs of 1 and 2 threads differ\n", n);
@@ -409,8 +445,9 @@ int main(int argc, char** argv) {
     for (size_t k = 0; k < nodes.size(); ++k)
       med[k] = nodes[k]->median(), mn[k] = nodes[k]->min(), cpu[k] = nodes[k]->cpu_median();
     auto cell = [](double v) { return std::to_string(v); };
-    std::printf("%8d %9zu %6d | %8.3f %8.3f %5.2f      | %8.3f %8.3f %5.2f      | %d\n", n, w.ents.size(), ticks,
-                med[2], med[3], med[2] / med[3], med[0], med[1], med[0] / med[1], nodes[0]->collisions());
+    std::printf("%8d %9zu %6d | %8.3f %8.3f %5.2f      | %8.3f %8.3f %5.2f      | %d | %s\n", n, w.ents.size(), ticks,
+                med[2], med[3], med[2] / med[3], med[0], med[1], med[0] / med[1], nodes[0]->collisions(),
+                stolen_text(stolen).c_str());
     std::fflush(stdout);
     if (out)
       out << n << ',' << w.ents.size() << ',' << warm << ',' << ticks << ',' << cell(med[2]) << ',' << cell(med[3])
@@ -423,6 +460,6 @@ int main(int argc, char** argv) {
   std::printf("%s\nmachine after: %s\n", cpus_used().c_str(), after.text().c_str());
   if (out)
     out << "# machine before: " << before.text() << "\n# " << cpus_used() << "\n# machine after: " << after.text()
-        << '\n';
+        << "\n# host steal during each N's timed ticks (per cent of the guest's CPU time): " << steal_by_n << '\n';
   return 0;
 }
