@@ -113,10 +113,10 @@ struct CpuClock {
     return all > from.all ? 100.0 * static_cast<double>(steal - from.steal) / static_cast<double>(all - from.all) : -1;
   }
 };
-std::string stolen_text(double pct) {
-  char b[64];
-  std::snprintf(b, sizeof b, "host steal %.1f %%", pct);
-  return pct < 0 ? "host steal unknown" : b;
+std::string percent_text(double pct) {  // "x.x %", or "unknown" when pct < 0
+  char b[32];
+  std::snprintf(b, sizeof b, "%.1f %%", pct);
+  return pct < 0 ? "unknown" : b;
 }
 
 // Ticks whose thread was on each CPU at their end (sched_getcpu), over the whole run.
@@ -410,7 +410,7 @@ int main(int argc, char** argv) {
       const double stolen = CpuClock::now().steal_pct_since(c0);
       std::printf("%8d %9zu %6d | %s, %d thread(s): median %.3f ms, cpu %.3f ms | %d | %s\n", n, w.ents.size(), ticks,
                   one_net ? "net on" : "net off", one_threads, nd.median(), nd.cpu_median(), nd.collisions(),
-                  stolen_text(stolen).c_str());
+                  ("host steal " + percent_text(stolen)).c_str());
       if (nd.bridge)  // what net out sent: the same bits before and after a change to it
         std::printf("  Entity States: digest %016llx, %llu exact DR tests, %llu ground vehicles' sent\n",
                     static_cast<unsigned long long>(nd.bridge->entity_state_digest()),
@@ -435,7 +435,7 @@ int main(int argc, char** argv) {
     for (int i = 0; i < ticks; ++i)
       for (auto& nd : nodes) nd->timed_tick(prewake);
     const double stolen = CpuClock::now().steal_pct_since(c0);
-    steal_by_n += (steal_by_n.empty() ? "" : ", ") + std::to_string(n) + ": " + stolen_text(stolen).substr(11);
+    steal_by_n += (steal_by_n.empty() ? "" : ", ") + std::to_string(n) + ": " + percent_text(stolen);
     for (size_t k = 0; k < nodes.size(); k += 2)
       if (nodes[k]->events() != nodes[k + 1]->events()) {
         std::fprintf(stderr, "N = %d: the event logs of 1 and 2 threads differ\n", n);
@@ -447,7 +447,7 @@ int main(int argc, char** argv) {
     auto cell = [](double v) { return std::to_string(v); };
     std::printf("%8d %9zu %6d | %8.3f %8.3f %5.2f      | %8.3f %8.3f %5.2f      | %d | %s\n", n, w.ents.size(), ticks,
                 med[2], med[3], med[2] / med[3], med[0], med[1], med[0] / med[1], nodes[0]->collisions(),
-                stolen_text(stolen).c_str());
+                ("host steal " + percent_text(stolen)).c_str());
     std::fflush(stdout);
     if (out)
       out << n << ',' << w.ents.size() << ',' << warm << ',' << ticks << ',' << cell(med[2]) << ',' << cell(med[3])
