@@ -2,6 +2,7 @@
 #include "node/dr_bound.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "node/pdu_build.hpp"
 
@@ -9,6 +10,22 @@ namespace npsnet::node {
 
 namespace {
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
+constexpr float kInf = std::numeric_limits<float>::infinity();
+// x as a float (beyond the floats' range: an infinity; NaN stays NaN), and the same no smaller
+// (float_up) or no larger (float_down) than x.
+float to_float(double x) {
+  if (std::abs(x) > std::numeric_limits<float>::max()) return x > 0 ? kInf : -kInf;
+  return static_cast<float>(x);
+}
+float float_up(double x) {
+  const float f = to_float(x);
+  return static_cast<double>(f) < x ? std::nextafter(f, kInf) : f;
+}
+float float_down(double x) {
+  const float f = to_float(x);
+  return static_cast<double>(f) > x ? std::nextafter(f, -kInf) : f;
+}
+Vec3f to_float(const Vec3& v) { return {to_float(v.x()), to_float(v.y()), to_float(v.z())}; }
 double wrapped_abs_deg(double d) {  // |d| wrapped to [0, 180]
   d = std::fabs(d);
   if (d >= 360.0) d = std::fmod(d, 360.0);
@@ -26,17 +43,21 @@ DrQuick dr_quick(const DrAnchor& a, const net::DrPublisher& pub) {
   const double row = jtj.cwiseAbs().rowwise().sum().maxCoeff();
   const Mat3 inv = a.jac.inverse();
   if (!(std::isfinite(row) && inv.allFinite() && std::abs(a.jac.determinant()) > 1e-6)) return q;
-  q.sigma = std::sqrt(row) * (1 + 1e-12);
-  q.p = a.p, q.err = inv * a.err, q.vel = inv * s.velocity, q.acc = inv * s.acceleration;
-  // |rho|: each solve's residual (twice, for its own rounding) times the largest factor it gets.
+  q.sigma = float_up(std::sqrt(row) * (1 + 1e-12));
+  q.p = a.p;
+  q.err = to_float(inv * a.err), q.vel = to_float(inv * s.velocity), q.acc = to_float(inv * s.acceleration);
+  // |rho|: the residuals of the kept (float) vectors, each twice for its own rounding, times the
+  // largest factor each gets.
   const double hb = th.heartbeat_s;
-  const double rho = 2 * ((a.err - a.jac * q.err).norm() + (s.velocity - a.jac * q.vel).norm() * hb +
-                          (s.acceleration - a.jac * q.acc).norm() * 0.5 * hb * hb) + 1e-9;
+  const double rho = 2 * ((a.err - a.jac * q.err.cast<double>()).norm() + (s.velocity - a.jac * q.vel.cast<double>()).norm() * hb +
+                          (s.acceleration - a.jac * q.acc.cast<double>()).norm() * 0.5 * hb * hb) + 1e-9;
   q.t = a.t, q.last_sent = pub.last_sent_s();
-  q.theta = a.theta, q.turn_rate = s.angular_velocity.norm();
-  q.pos_limit = th.position_threshold_m - rho, q.rot_limit = th.orientation_threshold_rad, q.heartbeat_s = hb;
+  q.theta = float_up(a.theta), q.turn_rate = float_up(s.angular_velocity.norm());
+  q.pos_limit = float_down(th.position_threshold_m - rho), q.rot_limit = float_down(th.orientation_threshold_rad);
+  q.heartbeat_s = float_down(hb);
   q.heading = a.heading, q.pitch = a.pitch, q.roll = a.roll;
-  q.usable = std::isfinite(q.err.squaredNorm() + q.vel.squaredNorm() + q.acc.squaredNorm());
+  q.usable = std::isfinite(q.err.squaredNorm() + q.vel.squaredNorm() + q.acc.squaredNorm() + q.sigma + q.theta +
+                           q.turn_rate + q.pos_limit + q.rot_limit + q.heartbeat_s);
   return q;
 }
 
@@ -49,15 +70,16 @@ bool dr_quiet(const DrQuick& q, const world::World& w, int e, double t) {
   if (!(nd <= kMaxAnchorDistM)) return false;
   // Orientation first: cheaper, and no bound at all for a vehicle turning.
   const auto& ents = w.ents;
-  const double rot = q.theta + q.turn_rate * (t - q.t) +
+  const double rot = double(q.theta) + double(q.turn_rate) * (t - q.t) +
                      (wrapped_abs_deg(ents.heading_deg[e] - q.heading) + std::fabs(ents.pitch_deg[e] - q.pitch) +
                       std::fabs(ents.roll_deg[e] - q.roll)) * kDeg +
                      kFrameTurnPerM * nd + kBoundEpsRad;
   if (!(rot < q.rot_limit)) return false;
   const double tc = q.t - q.last_sent;
   if (!(tc >= 0)) return false;  // (an anchor is made at or after the last send: rho's factors)
-  const Vec3 x = q.err + d - (q.vel * (since - tc) + 0.5 * q.acc * (since * since - tc * tc));
-  const double pos = q.sigma * x.norm() + 0.5 * kCurvaturePerM * nd * nd + kCurvaturePerM * nd + kBoundEpsM;
+  const Vec3 x = q.err.cast<double>() + d -
+                 (q.vel.cast<double>() * (since - tc) + 0.5 * q.acc.cast<double>() * (since * since - tc * tc));
+  const double pos = double(q.sigma) * x.norm() + 0.5 * kCurvaturePerM * nd * nd + kCurvaturePerM * nd + kBoundEpsM;
   return pos < q.pos_limit;
 }
 

@@ -46,29 +46,33 @@ struct DrAnchor {
 };
 
 // What dr_quiet reads of a vehicle's anchor and publisher, made once per exact test (dr_quick):
-// three cache lines where the two were some 350 bytes on seven, which net out's pass over every
-// vehicle streamed each tick (35 MB at 100,000 vehicles; its prefetches waited on memory). The
-// position term is taken into the local frame: with e, v, a the solutions of J e = E, J v = the
-// sent velocity, J a = the sent acceleration, E + J d - db = J (e + d - db_local) + rho, so
+// two cache lines where the two were some 350 bytes on seven, which net out's pass over every
+// vehicle streams each tick (at 100,000 vehicles more than the cache). The position term is taken
+// into the local frame: with e, v, a any vectors (near the solutions of J e = E, J v = the sent
+// velocity, J a = the sent acceleration; kept as floats), E + J d - db = J (e + d - db_local) + rho,
+// so
 //   |E + J d - db| <= sigma |e + d - v s1 - a s2| + |rho|,
 // sigma >= J's largest singular value (the square root of JtJ's largest row sum of magnitudes,
-// times 1 + 1e-12), s1, s2 db's factors of the sent velocity and acceleration, and |rho| at most
-// the solves' residuals times the largest s1, s2 a quiet vehicle can have (a heartbeat: since
-// the anchor is at or after the last send), taken off the position threshold (pos_limit). Its
-// bound is not below the ECEF form's (sigma >= 1 here, rho added), so a vehicle may go to the
-// exact test a tick sooner than with that form, and the PDUs are the same.
+// times 1 + 1e-12, rounded up to a float), s1, s2 db's factors of the sent velocity and
+// acceleration, and |rho| at most the residuals of the kept e, v, a (their rounding to floats
+// included) times the largest s1, s2 a quiet vehicle can have (a heartbeat: since the anchor is
+// at or after the last send), taken off the position threshold (pos_limit). Every other float is
+// rounded the safe way: what is added to a bound up, a limit down. Its bound is not below the
+// ECEF form's (sigma >= 1 here, rho added), so a vehicle may go to the exact test a tick sooner
+// than with that form, and the PDUs are the same.
 struct alignas(64) DrQuick {
   Vec3 p = Vec3::Zero();                        // the anchor's local position (m)
-  Vec3 err = Vec3::Zero();                      // J^-1 E (local m)
-  Vec3 vel = Vec3::Zero(), acc = Vec3::Zero();  // J^-1 of the sent velocity, acceleration
-  double sigma = 0;                             // >= |J y| / |y| for every y
   double t = 0, last_sent = 0;                  // the anchor's state time; the last send's (s)
-  double theta = 0, turn_rate = 0;              // the anchor's orientation error; |sent body rates|
-  double pos_limit = 0, rot_limit = 0, heartbeat_s = 0;  // thresholds (pos_limit less |rho|)
+  Vec3f err = Vec3f::Zero();                    // ~ J^-1 E (local m)
+  Vec3f vel = Vec3f::Zero(), acc = Vec3f::Zero();  // ~ J^-1 of the sent velocity, acceleration
+  float sigma = 0;                              // >= |J y| / |y| for every y
+  float theta = 0, turn_rate = 0;               // >= the anchor's orientation error; |sent body rates|
+  float pos_limit = 0, rot_limit = 0, heartbeat_s = 0;  // <= the thresholds (pos_limit less |rho|)
   float heading = 0, pitch = 0, roll = 0;       // the anchor's (deg)
-  bool usable = false;   // anchor valid, the publisher has sent, RVW, J invertible and finite
+  bool usable = false;   // anchor valid, the publisher has sent, RVW, J invertible, all finite
   bool has_sent = false;  // the publisher's has_sent()
 };
+static_assert(sizeof(DrQuick) == 128, "DrQuick: two cache lines");
 DrQuick dr_quick(const DrAnchor& a, const net::DrPublisher& pub);
 
 // Whether the exact test at state time t is certain to say None for entity e, published by the

@@ -67,8 +67,8 @@ void NetBridge::publish_vehicles() {
     std::uint32_t* listed = due.data();
     size_t n_listed = 0;
     for (size_t i = i0; i < i1; ++i) {
-      // What the bound reads of the publisher and the anchor (quick_: three lines a vehicle, where
-      // the two were seven; 19 MB at 100,000, more than the cache) asked for kPublishAhead
+      // What the bound reads of the publisher and the anchor (quick_: two lines a vehicle, where
+      // the two were seven; 12.8 MB at 100,000, more than the cache) asked for kPublishAhead
       // vehicles early: the hardware's own fetching missed them among this loop's many arrays.
       if (i + kPublishAhead < i1) core::prefetch_object(&quick_[i + kPublishAhead]);
       const int e = own_[i];

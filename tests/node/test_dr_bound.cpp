@@ -144,6 +144,46 @@ TEST(DrBound, QuietOnlyWhenTheExactTestSaysNone) {
   EXPECT_GT(quiet * 2, none) << "and most of those the exact test clears";
 }
 
+// DrQuick keeps floats (two cache lines): what a float adds to the bound is rounded up and a limit
+// down, and a value beyond the floats' range leaves the bound unusable (never quiet).
+TEST(DrBound, QuickFloatsRoundTheSafeWayAndOverflowIsNeverQuiet) {
+  const world::World& w = crowd_world();
+  int e = 0;
+  while (w.kinds[w.ents.kind[e]].mobility != world::Mobility::Ground) ++e;
+  const net::DrThresholds th{0.7, 0.1, 4.7};  // (position m, orientation rad, heartbeat s: not floats)
+  for (const double theta : {0.1, 0.7, 1.0 / 3, 0.0}) {
+    for (const double rate : {0.3, 0.7, 0.0}) {
+      node::DrAnchor a;
+      a.jac = Mat3::Identity(), a.p = w.ents.pos[e], a.err = Vec3(0.1, -0.7, 1.0 / 3), a.t = 10, a.theta = theta;
+      a.heading = w.ents.heading_deg[e], a.pitch = w.ents.pitch_deg[e], a.roll = w.ents.roll_deg[e], a.valid = true;
+      net::DrPublisher pub(net::DrAlgorithm::RVW, th);
+      net::KinematicState s;
+      s.velocity = Vec3(0.7, 0.1, 0), s.angular_velocity = Vec3(0, 0, rate);
+      pub.mark_sent(s, 10);
+      const node::DrQuick q = node::dr_quick(a, pub);
+      ASSERT_TRUE(q.usable);
+      EXPECT_GE(double(q.theta), theta);
+      EXPECT_GE(double(q.turn_rate), pub.sent_state().angular_velocity.norm());  // (as sent: DIS floats)
+      EXPECT_GE(double(q.sigma), 1.0);
+      EXPECT_LE(double(q.pos_limit), th.position_threshold_m);
+      EXPECT_LE(double(q.rot_limit), th.orientation_threshold_rad);
+      EXPECT_LE(double(q.heartbeat_s), th.heartbeat_s);
+    }
+  }
+  for (const double huge : {1e39, -1e300}) {  // beyond a float
+    node::DrAnchor a;
+    a.jac = Mat3::Identity(), a.p = w.ents.pos[e], a.t = 10, a.valid = true;
+    a.heading = w.ents.heading_deg[e], a.pitch = w.ents.pitch_deg[e], a.roll = w.ents.roll_deg[e];
+    net::DrPublisher pub(net::DrAlgorithm::RVW, th);
+    net::KinematicState s;
+    s.acceleration = Vec3(0, huge, 0);
+    pub.mark_sent(s, 10);
+    const node::DrQuick q = node::dr_quick(a, pub);
+    EXPECT_FALSE(q.usable) << huge;
+    EXPECT_FALSE(node::dr_quiet(q, w, e, 10.05)) << huge;
+  }
+}
+
 TEST(DrBound, CrowdSendsTheSameEntityStatesAsTheExactTestEveryTick) {
   const int ticks = 150;  // 15 s: three heartbeats, turns, collisions
   const Sent exact = run(false, 1, false, ticks);
