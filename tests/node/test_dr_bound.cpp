@@ -170,14 +170,12 @@ TEST(DrBound, QuickFloatsRoundTheSafeWayAndOverflowIsNeverQuiet) {
       EXPECT_LE(double(q.heartbeat_s), th.heartbeat_s);
     }
   }
-  for (const double huge : {1e39, -1e300}) {  // beyond a float
+  for (const double huge : {1e39, -1e300}) {  // an anchor error beyond a float
     node::DrAnchor a;
-    a.jac = Mat3::Identity(), a.p = w.ents.pos[e], a.t = 10, a.valid = true;
+    a.jac = Mat3::Identity(), a.p = w.ents.pos[e], a.err = Vec3(0, huge, 0), a.t = 10, a.valid = true;
     a.heading = w.ents.heading_deg[e], a.pitch = w.ents.pitch_deg[e], a.roll = w.ents.roll_deg[e];
     net::DrPublisher pub(net::DrAlgorithm::RVW, th);
-    net::KinematicState s;
-    s.acceleration = Vec3(0, huge, 0);
-    pub.mark_sent(s, 10);
+    pub.mark_sent(net::KinematicState{}, 10);
     const node::DrQuick q = node::dr_quick(a, pub);
     EXPECT_FALSE(q.usable) << huge;
     EXPECT_FALSE(node::dr_quiet(q, w, e, 10.05)) << huge;
