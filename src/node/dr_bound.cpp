@@ -11,20 +11,19 @@ namespace npsnet::node {
 namespace {
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 constexpr float kInf = std::numeric_limits<float>::infinity();
-// x as a float (beyond the floats' range: an infinity; NaN stays NaN), and the same no smaller
-// (float_up) or no larger (float_down) than x.
+// x as a float (beyond the floats' range: an infinity; NaN stays NaN), and the same on the safe
+// side: toward +kInf no smaller than x (float_up), toward -kInf no larger (float_down).
 float to_float(double x) {
   if (std::abs(x) > std::numeric_limits<float>::max()) return x > 0 ? kInf : -kInf;
   return static_cast<float>(x);
 }
-float float_up(double x) {
+float float_toward(double x, float side) {
   const float f = to_float(x);
-  return static_cast<double>(f) < x ? std::nextafter(f, kInf) : f;
+  const bool wrong_side = side > 0 ? static_cast<double>(f) < x : static_cast<double>(f) > x;
+  return wrong_side ? std::nextafter(f, side) : f;
 }
-float float_down(double x) {
-  const float f = to_float(x);
-  return static_cast<double>(f) > x ? std::nextafter(f, -kInf) : f;
-}
+float float_up(double x) { return float_toward(x, kInf); }
+float float_down(double x) { return float_toward(x, -kInf); }
 Vec3f to_float(const Vec3& v) { return {to_float(v.x()), to_float(v.y()), to_float(v.z())}; }
 double wrapped_abs_deg(double d) {  // |d| wrapped to [0, 180]
   d = std::fabs(d);
