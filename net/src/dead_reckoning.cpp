@@ -128,18 +128,12 @@ KinematicState kinematic_state(const EntityStatePdu& p) noexcept {
 
 void write_kinematics(const KinematicState& s, DrAlgorithm algorithm, EntityStatePdu& p) noexcept {
   p.location = {s.position.x(), s.position.y(), s.position.z()};
-  p.linear_velocity = {static_cast<float>(s.velocity.x()), static_cast<float>(s.velocity.y()),
-                       static_cast<float>(s.velocity.z())};
-  p.orientation = {static_cast<float>(s.orientation.psi), static_cast<float>(s.orientation.theta),
-                   static_cast<float>(s.orientation.phi)};
+  p.linear_velocity = wire_vec3f(s.velocity.x(), s.velocity.y(), s.velocity.z());
+  p.orientation = {wire_float(s.orientation.psi), wire_float(s.orientation.theta), wire_float(s.orientation.phi)};
   auto& dr = p.dead_reckoning;
   dr.algorithm = static_cast<std::uint8_t>(algorithm);
-  dr.linear_acceleration = {static_cast<float>(s.acceleration.x()),
-                            static_cast<float>(s.acceleration.y()),
-                            static_cast<float>(s.acceleration.z())};
-  dr.angular_velocity = {static_cast<float>(s.angular_velocity.x()),
-                         static_cast<float>(s.angular_velocity.y()),
-                         static_cast<float>(s.angular_velocity.z())};
+  dr.linear_acceleration = wire_vec3f(s.acceleration.x(), s.acceleration.y(), s.acceleration.z());
+  dr.angular_velocity = wire_vec3f(s.angular_velocity.x(), s.angular_velocity.y(), s.angular_velocity.z());
 }
 
 DrPublisher::Test DrPublisher::test(const KinematicState& truth, double now_s) const noexcept {

@@ -1,7 +1,10 @@
 // Dead reckoning algorithms 1-5 against analytic motion; the sender's threshold policy.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include "test_util.hpp"
 
@@ -113,6 +116,34 @@ TEST(DeadReckoning, PduConversionKeepsTheState) {
   EXPECT_NEAR((back.velocity - s.velocity).norm(), 0.0, 1e-5);
   EXPECT_NEAR((back.angular_velocity - s.angular_velocity).norm(), 0.0, 1e-6);
   EXPECT_EQ(net::dr_algorithm_from_wire(200), net::DrAlgorithm::Other);
+}
+
+// A double beyond a float's range has no float (a plain conversion is undefined there): the
+// PDU carries the largest float of its sign; in range, the nearest float, as a plain conversion.
+TEST(DeadReckoning, PduFloatsSaturateBeyondAFloatsRange) {
+  constexpr float kMax = std::numeric_limits<float>::max();
+  EXPECT_EQ(net::wire_float(1e300), kMax);
+  EXPECT_EQ(net::wire_float(-1e300), -kMax);
+  EXPECT_EQ(net::wire_float(std::numeric_limits<double>::infinity()), kMax);
+  EXPECT_EQ(net::wire_float(-std::numeric_limits<double>::infinity()), -kMax);
+  EXPECT_EQ(net::wire_float(double(kMax)), kMax);
+  EXPECT_TRUE(std::isnan(net::wire_float(std::nan(""))));
+  for (double x : {0.1, -12.345678901234, 6.02e23, -1e-40, 3.4e38, -3.4e38})
+    EXPECT_EQ(std::bit_cast<uint32_t>(net::wire_float(x)), std::bit_cast<uint32_t>(static_cast<float>(x))) << x;
+  const net::Vec3f v = net::wire_vec3f(1e39, -2.5, -1e39);
+  EXPECT_EQ(v, (net::Vec3f{kMax, -2.5f, -kMax}));
+
+  net::KinematicState s = moving();
+  s.velocity = {1e300, -1e300, 4};
+  s.acceleration = {0, 5e38, 0};
+  s.angular_velocity = {-1e50, 0, 0};
+  s.orientation.psi = 1e40;
+  net::EntityStatePdu pdu;
+  net::write_kinematics(s, net::DrAlgorithm::RVW, pdu);
+  EXPECT_EQ(pdu.linear_velocity, (net::Vec3f{kMax, -kMax, 4}));
+  EXPECT_EQ(pdu.dead_reckoning.linear_acceleration, (net::Vec3f{0, kMax, 0}));
+  EXPECT_EQ(pdu.dead_reckoning.angular_velocity, (net::Vec3f{-kMax, 0, 0}));
+  EXPECT_EQ(pdu.orientation.psi, kMax);
 }
 
 TEST(DrPublisher, FirstThenPositionThreshold) {

@@ -10,7 +10,7 @@ namespace npsnet::node {
 namespace {
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 Eigen::Vector3d ev(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
-net::Vec3f f3(const Vec3& v) { return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())}; }
+net::Vec3f f3(const Vec3& v) { return net::wire_vec3f(v.x(), v.y(), v.z()); }
 net::Marking marking_of(const std::string& id) {
   auto mk = net::make_marking(id.substr(0, 11));
   return mk ? mk.value() : net::Marking{};
@@ -88,7 +88,7 @@ net::FirePdu fire_pdu(const world::World& w, int m, const net::EntityId& firing,
   p.descriptor.fuse = dis::kFuseContact;
   p.descriptor.quantity = 1;
   p.velocity = f3(ecef_velocity(w, ents.pos[m], ents.vel[m]));
-  p.range = static_cast<float>((ents.aim[m] - ents.pos[m]).norm());
+  p.range = net::wire_float((ents.aim[m] - ents.pos[m]).norm());
   p.header.timestamp = net::relative_timestamp(w.t);
   return p;
 }
@@ -124,11 +124,10 @@ net::CollisionPdu collision_pdu(const world::World& w, int own, const net::Entit
   p.event_id = event;
   set_outcome(p, result);  // collision type, and the outcome in octet 31 (collision_outcome.hpp)
   p.velocity = f3(ecef_velocity(w, ents.pos[own], own_vel));
-  p.mass = static_cast<float>(w.kinds[ents.kind[own]].mass_kg);
+  p.mass = net::wire_float(w.kinds[ents.kind[own]].mass_kg);
   const Vec3 d = point - ents.pos[own];
   const double h = ents.heading_deg[own] * kDeg;
-  p.location_in_entity = {static_cast<float>(d.x() * std::sin(h) + d.y() * std::cos(h)),
-                          static_cast<float>(d.x() * std::cos(h) - d.y() * std::sin(h)), static_cast<float>(-d.z())};
+  p.location_in_entity = net::wire_vec3f(d.x() * std::sin(h) + d.y() * std::cos(h), d.x() * std::cos(h) - d.y() * std::sin(h), -d.z());
   p.header.timestamp = net::relative_timestamp(w.t);
   return p;
 }

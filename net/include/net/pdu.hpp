@@ -12,6 +12,7 @@
 #include <compare>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace net {
@@ -91,6 +92,14 @@ struct Vec3f {
   float x = 0, y = 0, z = 0;
   friend bool operator==(const Vec3f&, const Vec3f&) = default;
 };
+// A double as the float a PDU field carries: the nearest float within a float's range (as a plain
+// conversion), the largest float of its sign beyond it, infinities included (a plain conversion
+// is undefined there, and a peer should not be sent an infinity); NaN stays NaN.
+constexpr float wire_float(double x) noexcept {
+  constexpr float kMax = std::numeric_limits<float>::max();
+  return x > kMax ? kMax : x < -kMax ? -kMax : static_cast<float>(x);
+}
+constexpr Vec3f wire_vec3f(double x, double y, double z) noexcept { return {wire_float(x), wire_float(y), wire_float(z)}; }
 struct Vec3d {
   double x = 0, y = 0, z = 0;
   friend bool operator==(const Vec3d&, const Vec3d&) = default;
