@@ -22,7 +22,7 @@
 // (CpuClock: the share of the guest's CPU time the hypervisor took back; also printed on each
 // N's line). Past 32,767 entities the node numbers its entities under several DIS applications
 // (node/ownership.hpp), so the whole tick is measured at every N.
-// Usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T] [--stages]]
+// Usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T] [--stages]] [--tick-s S]
 //   default N = 500 ... 200,000 -> bench/results/tick_scaling.csv; --quick: 500 and 5,000, no CSV;
 //   --n without --csv: no CSV (the committed one is the chart of every N).
 //   --one 1,2: only the node with net on (1) or off (0) on that many threads, `warm` + T ticks
@@ -37,6 +37,8 @@
 //   the tick's thread wakes the sleeping worker itself (~11 us at 500 vehicles).
 //   --pin C: the tick's thread runs on CPU C only (the pool's workers on any): on this machine
 //   the two CPUs are not alike (MachineProbe below), so an A/B compares like with like.
+//   --tick-s S: the simulated time a tick steps (default 0.1 s, the chart's and the committed
+//   CSV's; 0.0166666666667 is TARGETS.md's 60 Hz). The same tick counts whatever S.
 #include <pthread.h>
 #include <sched.h>
 #include <unistd.h>
@@ -140,10 +142,10 @@ struct Node {
   node::Simulation sim;
   std::unique_ptr<node::NetBridge> bridge;
   std::vector<double> ms;
-  Node(const world::World& w, const world::Scenario& sc, int threads, bool net, const std::string& tag)
+  Node(const world::World& w, const world::Scenario& sc, int threads, bool net, const std::string& tag, double tick_s)
       : file(std::filesystem::temp_directory_path() / ("npsnet-tick-scaling-" + std::to_string(::getpid()) + tag)),
         log(file),
-        sim(w, sc, log, 0.1) {
+        sim(w, sc, log, tick_s) {
     sim.set_threads(threads);
     if (net) {
       node::BridgeOptions bo;
@@ -337,6 +339,7 @@ int main(int argc, char** argv) {
   int one_net = -1, one_threads = 1, ticks_override = 0;
   bool some_n = false, csv_given = false, prewake = true, stages = false;
   int pin = -1;  // --pin C: the tick's thread on CPU C (the pools' workers keep every CPU)
+  double tick_s = 0.1;  // --tick-s S
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) ns = {500, 5000}, csv.clear();
     else if (!std::strcmp(argv[i], "--one") && i + 1 < argc &&
@@ -350,13 +353,15 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--pin") && i + 1 < argc && (pin = std::atoi(argv[++i])) >= 0) {
     }
     else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i], csv_given = true;
+    else if (!std::strcmp(argv[i], "--tick-s") && i + 1 < argc && (tick_s = std::atof(argv[++i])) > 0 && tick_s <= 1) {
+    }
     else if (!std::strcmp(argv[i], "--n") && i + 1 < argc) {
       some_n = true;
       ns.clear();
       std::stringstream ss(argv[++i]);
       for (std::string t; std::getline(ss, t, ',');) ns.push_back(std::stoi(t));
     } else {
-      std::fprintf(stderr, "usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T] [--stages]] [--prewake 0|1] [--pin CPU]\n");
+      std::fprintf(stderr, "usage: bench_tick_scaling [--quick] [--csv FILE] [--n N,N,...] [--one NET,THREADS [--ticks T] [--stages]] [--prewake 0|1] [--pin CPU] [--tick-s S]\n");
       return 2;
     }
   }
@@ -381,6 +386,7 @@ int main(int argc, char** argv) {
   }
   const MachineProbe before = MachineProbe::take();
   std::printf("machine before: %s\n", before.text().c_str());
+  std::printf("each tick steps %.6g s of simulated time\n", tick_s);
   std::string steal_by_n;  // "N: x %, ..." for the CSV
   std::printf("%8s %9s %6s | %-27s | %-27s | %s\n", "N", "entities", "ticks", "whole tick ms: 1t, 2t, x",
               "net off ms: 1t, 2t, x", "collisions");
@@ -401,7 +407,7 @@ int main(int argc, char** argv) {
     const int warm = n <= 50000 ? 5 : 3;
     if (one_net >= 0) {  // one node alone (profiling)
       pin_tick_thread(false);
-      Node nd(w, sc, one_threads, one_net == 1, "-one.jsonl");
+      Node nd(w, sc, one_threads, one_net == 1, "-one.jsonl", tick_s);
       pin_tick_thread(true);
       for (int i = 0; i < warm; ++i) nd.sim.tick();
       if (stages) nd.time_stages();
@@ -427,7 +433,7 @@ int main(int argc, char** argv) {
     std::vector<std::unique_ptr<Node>> nodes;  // [net off 1t, net off 2t, net 1t, net 2t]
     pin_tick_thread(false);
     for (int k = 0; k < 4; ++k)
-      nodes.push_back(std::make_unique<Node>(w, sc, 1 + k % 2, k >= 2, "-" + std::to_string(k) + ".jsonl"));
+      nodes.push_back(std::make_unique<Node>(w, sc, 1 + k % 2, k >= 2, "-" + std::to_string(k) + ".jsonl", tick_s));
     pin_tick_thread(true);
     for (auto& nd : nodes)
       for (int i = 0; i < warm; ++i) nd->sim.tick();
@@ -460,6 +466,7 @@ int main(int argc, char** argv) {
   std::printf("%s\nmachine after: %s\n", cpus_used().c_str(), after.text().c_str());
   if (out)
     out << "# machine before: " << before.text() << "\n# " << cpus_used() << "\n# machine after: " << after.text()
-        << "\n# host steal during each N's timed ticks (per cent of the guest's CPU time): " << steal_by_n << '\n';
+        << "\n# host steal during each N's timed ticks (per cent of the guest's CPU time): " << steal_by_n
+        << "\n# each tick steps " << tick_s << " s of simulated time\n";
   return 0;
 }
