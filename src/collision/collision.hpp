@@ -233,9 +233,11 @@ class Detector {
   };
   Lane& lane(int c);
   void merge_lanes(int k);
-  // The fixed objects near swept entity i (order_[i]); the moving pair pairs_[p].
+  // The fixed objects near swept entity i (order_[i]); the moving pair pairs_[p]; the moving
+  // pairs pairs_[p0, p1) in turn, each asked of the cache ahead (prefetch_pair).
   void fixed_contacts(const world::World& w, size_t i, Lane& L);
   void pair_contact(const world::World& w, size_t p, Lane& L);
+  void pair_contacts(const world::World& w, size_t p0, size_t p1, Lane& L);
   // A hint (core/prefetch.hpp): the cache lines pair_contact(p) reads, in three stages, each
   // reading what the one before asked for: 0 the two bodies' Swept lines (tags in them); 1
   // lo_start_ of the lower entity index; 2 the episode keys lo_start_ points to.

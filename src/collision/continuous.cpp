@@ -144,11 +144,7 @@ constexpr size_t kEntityGrain = 128, kPairGrain = 256, kPendingGrain = 4;
 // Ranges a thread (core/jobs.hpp), claimed as threads come free: the long entity pass, and the
 // pairs whose costs differ most (a pending pair's narrow phase: a sphere sweep or a mesh).
 constexpr int kEntityChunksPerThread = 4, kPairChunksPerThread = 4, kPendingChunksPerThread = 8;
-// The pairs lie in no spatial order: what a pair reads of its two bodies is asked of the cache
-// kPairAhead pairs early (prefetch_pair), so their misses overlap instead of stalling in turn:
-// its bodies' Swept lines twice as far ahead, lo_start_ kPairAhead, the episode keys half as
-// far (each stage reads what the one before asked for).
-constexpr size_t kPairAhead = 8, kPendingAhead = 4;
+constexpr size_t kPendingAhead = 4;
 // The entity pass writes each entity's Swept, tags and box, which the pair loop and the broad
 // phase read last tick on whichever thread had the pair: asked for kEntityAhead entities early.
 constexpr size_t kEntityAhead = 8;
@@ -336,14 +332,8 @@ void Detector::detect_continuous(const world::World& w) {
   // index), then the analytic sweep, then the tiers.
   moving_.pairs(boxes_, order_, ents.size(), pairs_, jobs_, &travel_);
   lap(times_.broad);
-  in_lanes(pairs_.size(), kPairGrain, kPairChunksPerThread, [&](int c, size_t p0, size_t p1) {
-    for (size_t p = p0; p < p1; ++p) {
-      if (p + 2 * kPairAhead < p1) prefetch_pair(p + 2 * kPairAhead, 0);
-      if (p + kPairAhead < p1) prefetch_pair(p + kPairAhead, 1);
-      if (p + kPairAhead / 2 < p1) prefetch_pair(p + kPairAhead / 2, 2);
-      pair_contact(w, p, lanes_[c]);
-    }
-  });
+  in_lanes(pairs_.size(), kPairGrain, kPairChunksPerThread,
+           [&](int c, size_t p0, size_t p1) { pair_contacts(w, p0, p1, lanes_[c]); });
   lap(times_.pairs);
 
   // Auto tier: the pairs that need a narrow phase get their tier from the scene and the budget

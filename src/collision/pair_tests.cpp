@@ -11,6 +11,12 @@
 namespace npsnet::collision {
 namespace {
 
+// The pairs lie in no spatial order: what a pair reads of its two bodies is asked of the cache
+// kPairAhead pairs early (prefetch_pair), so their misses overlap instead of stalling in turn:
+// its bodies' Swept lines twice as far ahead, lo_start_ kPairAhead, the episode keys half as
+// far (each stage reads what the one before asked for).
+constexpr size_t kPairAhead = 8;
+
 // A moving body's radius in its pair's sweep: its sphere's at the sphere tier, else its bound's
 // (a tier above may be asked).
 double swept_radius(Tier tier, double r_sphere, double r_bound) { return tier == Tier::Sphere ? r_sphere : r_bound; }
@@ -174,6 +180,17 @@ void Detector::pair_contact(const world::World& w, size_t p, Lane& L) {
   }
   L.touching.push_back(contact_key(a, b, false));
   L.candidates.push_back(k);
+}
+
+// (here, with prefetch_pair and pair_contact, so that both inline into the loop: three calls of
+// prefetch_pair a pair were a third of the pair loop's samples in the 100,000-vehicle crowd)
+[[gnu::flatten]] void Detector::pair_contacts(const world::World& w, size_t p0, size_t p1, Lane& L) {
+  for (size_t p = p0; p < p1; ++p) {
+    if (p + 2 * kPairAhead < p1) prefetch_pair(p + 2 * kPairAhead, 0);
+    if (p + kPairAhead < p1) prefetch_pair(p + kPairAhead, 1);
+    if (p + kPairAhead / 2 < p1) prefetch_pair(p + kPairAhead / 2, 2);
+    pair_contact(w, p, L);
+  }
 }
 
 void Detector::decide_pending(const world::World& w, size_t p, Lane& L) {
