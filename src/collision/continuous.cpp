@@ -316,8 +316,8 @@ void Detector::detect_continuous(const world::World& w) {
       if (top != Tier::Sphere && tu.start != now) {
         double turn = 0;
         for (int k = 0; k < 3; ++k) {
-          const double a = double(now[k]) - tu.start[k];  // within a half turn remainder gives a itself
-          turn += std::abs(std::abs(a) < 180 ? a : std::remainder(a, 360.0));
+          const double a = double(now[k]) - tu.start[k];
+          turn += std::abs(wrap180(a));
         }
         sw.r_bound += static_cast<float>(turn * kPi / 180 * s.sphere_centre.norm());
       }

@@ -31,6 +31,10 @@ inline double wrap360(double deg) {
   double r = std::fmod(deg, 360.0);
   return r < 0 ? r + 360.0 : r;
 }
+// An angle in degrees wrapped to [-180, 180], the short way round (for a difference of two
+// angles): std::remainder's exact result, an angle already within (-180, 180) as it is (what
+// remainder gives for it, without the libm call of the hot loops). NaN and infinities: NaN.
+inline double wrap180(double deg) { return std::abs(deg) < 180.0 ? deg : std::remainder(deg, 360.0); }
 // Compass heading (0 = north = +y, 90 = east = +x) to a unit vector in the local frame, and back,
 // with core/trig.hpp's sincos and atan2 (every vehicle, every tick).
 inline Vec2 heading_to_dir(double heading_deg) {

@@ -25,11 +25,6 @@ float float_toward(double x, float side) {
 float float_up(double x) { return float_toward(x, kInf); }
 float float_down(double x) { return float_toward(x, -kInf); }
 Vec3f to_float(const Vec3& v) { return {to_float(v.x()), to_float(v.y()), to_float(v.z())}; }
-double wrapped_abs_deg(double d) {  // |d| wrapped to [0, 180]
-  d = std::fabs(d);
-  if (d >= 360.0) d = std::fmod(d, 360.0);
-  return d > 180.0 ? 360.0 - d : d;
-}
 }  // namespace
 
 DrQuick dr_quick(const DrAnchor& a, const net::DrPublisher& pub) {
@@ -70,7 +65,7 @@ bool dr_quiet(const DrQuick& q, const world::World& w, int e, double t) {
   // Orientation first: cheaper, and no bound at all for a vehicle turning.
   const auto& ents = w.ents;
   const double rot = double(q.theta) + double(q.turn_rate) * (t - q.t) +
-                     (wrapped_abs_deg(ents.heading_deg[e] - q.heading) + std::fabs(ents.pitch_deg[e] - q.pitch) +
+                     (std::fabs(wrap180(ents.heading_deg[e] - q.heading)) + std::fabs(ents.pitch_deg[e] - q.pitch) +
                       std::fabs(ents.roll_deg[e] - q.roll)) * kDeg +
                      kFrameTurnPerM * nd + kBoundEpsRad;
   if (!(rot < q.rot_limit)) return false;

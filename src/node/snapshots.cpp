@@ -52,7 +52,7 @@ int live_vehicle(const world::World& w, bool& alive) {
 }
 
 float lerp_deg(float a, float b, double f) {
-  const double d = std::remainder(static_cast<double>(b) - a, 360.0);  // the short way round
+  const double d = wrap180(static_cast<double>(b) - a);  // the short way round
   return static_cast<float>(a + f * d);
 }
 

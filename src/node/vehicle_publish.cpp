@@ -37,13 +37,6 @@ constexpr size_t kMinTestBatch = 16, kMaxTestBatch = 512, kTestGrain = 4;
 // Vehicles ahead whose publisher and anchor the local pass asks of the cache (a hint).
 constexpr size_t kPublishAhead = 4;
 
-double wrap180(double d) {
-  d += 180.0;
-  if (!(d >= 0.0 && d < 360.0)) d = std::fmod(d, 360.0);  // in range fmod gives d itself
-  if (d < 0) d += 360.0;
-  return d - 180.0;
-}
-
 }  // namespace
 
 void NetBridge::publish_vehicles() {

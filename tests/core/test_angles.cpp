@@ -1,4 +1,4 @@
-// Angle helpers: wrap360 (core/math.hpp) and atan2_deg_float (core/atan_float.hpp) give the bits
+// Angle helpers: wrap360 and wrap180 (core/math.hpp) and atan2_deg_float (core/atan_float.hpp) give the bits
 // of the libm expressions they stand for; sincos_small, sincos_deg and atan2_rad
 // (core/trig.hpp) are within 1-2.5 ulp of long double; their two-at-once forms give the same bits.
 #include <gtest/gtest.h>
@@ -35,6 +35,31 @@ TEST(Angles, Wrap360GivesTheBitsOfFmodInAndOutOfRange) {
   for (double x : xs) EXPECT_TRUE(same_bits(wrap360(x), wrap360_fmod(x))) << x;
   EXPECT_TRUE(std::isnan(wrap360(std::numeric_limits<double>::quiet_NaN())));
   EXPECT_TRUE(std::signbit(wrap360(-0.0)));  // fmod keeps the sign of a zero
+}
+
+// wrap180 is std::remainder(deg, 360) (exact, the short way round), bit for bit, its shortcut
+// included; and |wrap180| is the wrapped magnitude the dead-reckoning bound took before, by fmod.
+TEST(Angles, Wrap180GivesTheBitsOfRemainderInAndOutOfRange) {
+  std::vector<double> xs = {0.0, -0.0, 1e-300, -1e-300, 179.99999999999997, 180.0, -180.0, 181.0, -181.0,
+                            359.99999999999994, 360.0, -360.0, 540.0, -540.0, 720.0, 1e9, -1e9, 1e300, -1e300,
+                            std::nextafter(180.0, 0.0), std::nextafter(-180.0, 0.0), std::nextafter(180.0, 360.0)};
+  std::mt19937_64 rng(180);
+  std::uniform_real_distribution<double> any(-1000.0, 1000.0);
+  for (int i = 0; i < 100000; ++i) xs.push_back(any(rng));
+  auto abs_by_fmod = [](double d) {  // node/dr_bound.cpp's wrapped |d| before wrap180
+    d = std::fabs(d);
+    if (d >= 360.0) d = std::fmod(d, 360.0);
+    return d > 180.0 ? 360.0 - d : d;
+  };
+  for (double x : xs) {
+    EXPECT_TRUE(same_bits(wrap180(x), std::remainder(x, 360.0))) << x;
+    EXPECT_TRUE(same_bits(std::fabs(wrap180(x)), abs_by_fmod(x))) << x;
+    EXPECT_LE(std::fabs(wrap180(x)), 180.0) << x;
+  }
+  EXPECT_TRUE(std::isnan(wrap180(std::numeric_limits<double>::quiet_NaN())));
+  EXPECT_TRUE(std::isnan(wrap180(std::numeric_limits<double>::infinity())));
+  EXPECT_EQ(wrap180(359.0), -1.0);
+  EXPECT_EQ(wrap180(-270.0), 90.0);
 }
 
 TEST(Angles, Atan2DegFloatGivesTheBitsOfTheLibmExpression) {
