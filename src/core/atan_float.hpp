@@ -8,7 +8,9 @@
 // y = +-0 gives +-0 (what atan2 gives for x > 0); NaN and infinite y go the same way as libm's.
 // atan2_deg_float2 (terrain following's pitch and roll): the two slopes in one vector division,
 // and when both are within kAtanSeriesMax, d from atan's Taylor series to t^17 (no division:
-// within 1 ulp of long double there, tests/core/test_angles.cpp) instead of the rational one.
+// within 1 ulp of long double there, tests/core/test_angles.cpp) instead of the rational one;
+// atan2_deg_float4 the same for two vehicles at once. Every form gives the libm expression's
+// float: which of atan's two forms picked d does not change it.
 #pragma once
 #include <cmath>
 
@@ -57,6 +59,22 @@ inline void atan2_deg_float2(double y0, double x0, double y1, double x1, float& 
     detail::atan_rational2(v[0], v[1], r0, r1);
   }
   a = detail::atan2_deg_float_of(y0, x0, r0), b = detail::atan2_deg_float_of(y1, x1, r1);
+}
+
+// The same of four slopes at once (two vehicles' pitch and roll side by side), bit for bit: one
+// vector division and, when all four are within kAtanSeriesMax, one series; else two pairs.
+inline void atan2_deg_float4(const double (&y)[4], const double (&x)[4], float (&out)[4]) {
+  using Double4 = double __attribute__((vector_size(32)));
+  const Double4 v = Double4{y[0], y[1], y[2], y[3]} / Double4{x[0], x[1], x[2], x[3]};
+  bool series = true;
+  for (int k = 0; k < 4; ++k) series &= std::abs(v[k]) <= detail::kAtanSeriesMax;
+  if (!series) {
+    atan2_deg_float2(y[0], x[0], y[1], x[1], out[0], out[1]);
+    atan2_deg_float2(y[2], x[2], y[3], x[3], out[2], out[3]);
+    return;
+  }
+  const Double4 r = detail::atan_series(v);
+  for (int k = 0; k < 4; ++k) out[k] = detail::atan2_deg_float_of(y[k], x[k], r[k]);
 }
 
 }  // namespace npsnet

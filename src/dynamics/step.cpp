@@ -206,26 +206,67 @@ bool burn_fuel(world::World& w, int e, double speed_mps, double dt) {
 
 void follow_terrain(world::World& w, int e) { follow_terrain_along(w, e, heading_to_dir(w.ents.heading_deg[e])); }
 
-void follow_terrain_along(world::World& w, int e, const Vec2& f) {
-  auto& ents = w.ents;
+namespace {
+// A ground vehicle's terrain following in its parts, so that two vehicles' can go side by side
+// (follow_terrain_two): its footprint's corners; from their heights, its height and the rise and
+// run of its pitch and roll; those stored.
+struct Footing {
+  double half_len, half_wid;
+  double x[4], y[4];  // front right, front left, back right, back left
+};
+struct Settle {
+  double z;
+  double rise[2], run[2];  // pitch (front up +), roll (right side down +)
+};
+Footing footing(const world::World& w, int e, const Vec2& f) {
+  const auto& ents = w.ents;
   const world::Kind& k = w.kinds[ents.kind[e]];
   const world::Model& m = w.models[k.models[0]];
-  const double half_len = std::max(0.5, 0.5 * static_cast<double>(m.bbox_max.y() - m.bbox_min.y()));
-  const double half_wid = std::max(0.5, 0.5 * static_cast<double>(m.bbox_max.x() - m.bbox_min.x()));
+  Footing ft;
+  ft.half_len = std::max(0.5, 0.5 * static_cast<double>(m.bbox_max.y() - m.bbox_min.y()));
+  ft.half_wid = std::max(0.5, 0.5 * static_cast<double>(m.bbox_max.x() - m.bbox_min.x()));
   const Vec2 r(f.y(), -f.x());  // right of forward
   const Vec2 c(ents.pos[e].x(), ents.pos[e].y());
-  // The four corners once each, in one Terrain::heights4 (the bits of four height() calls).
-  const Vec2 p[4] = {c + f * half_len + r * half_wid, c + f * half_len - r * half_wid, c - f * half_len + r * half_wid,
-                     c - f * half_len - r * half_wid};
-  double hts[4];
-  w.terrain.heights4({p[0].x(), p[1].x(), p[2].x(), p[3].x()}, {p[0].y(), p[1].y(), p[2].y(), p[3].y()}, hts);
+  const Vec2 p[4] = {c + f * ft.half_len + r * ft.half_wid, c + f * ft.half_len - r * ft.half_wid,
+                     c - f * ft.half_len + r * ft.half_wid, c - f * ft.half_len - r * ft.half_wid};
+  for (int i = 0; i < 4; ++i) ft.x[i] = p[i].x(), ft.y[i] = p[i].y();
+  return ft;
+}
+Settle settle(const Footing& ft, const double (&hts)[4]) {
   const double fr = hts[0], fl = hts[1], br = hts[2], bl = hts[3];
   const double hf = 0.5 * (fr + fl), hb = 0.5 * (br + bl), hr = 0.5 * (fr + br), hl = 0.5 * (fl + bl);
-  ents.pos[e].z() = 0.25 * (hf + hb + hr + hl);
+  return {0.25 * (hf + hb + hr + hl), {hf - hb, hl - hr}, {2 * ft.half_len, 2 * ft.half_wid}};
+}
+void seat(world::World& w, int e, double z, float pitch, float roll) {
+  w.ents.pos[e].z() = z;
+  w.ents.pitch_deg[e] = pitch, w.ents.roll_deg[e] = roll;
+}
+// Two vehicles' (e0 != e1) together, the same bits as one after the other: their heights' and
+// slopes' chains of divisions and loads side by side (one vehicle's chain is too long for the
+// core to overlap the next vehicle's with it: perf, 100,000 vehicles).
+void follow_terrain_two(world::World& w, int e0, const Vec2& f0, int e1, const Vec2& f1) {
+  const Footing a = footing(w, e0, f0), b = footing(w, e1, f1);
+  double ha[4], hb[4];
+  w.terrain.heights4(a.x, a.y, ha);
+  w.terrain.heights4(b.x, b.y, hb);
+  const Settle sa = settle(a, ha), sb = settle(b, hb);
+  float angle[4];
+  atan2_deg_float4({sa.rise[0], sa.rise[1], sb.rise[0], sb.rise[1]}, {sa.run[0], sa.run[1], sb.run[0], sb.run[1]}, angle);
+  seat(w, e0, sa.z, angle[0], angle[1]);
+  seat(w, e1, sb.z, angle[2], angle[3]);
+}
+}  // namespace
+
+void follow_terrain_along(world::World& w, int e, const Vec2& f) {
+  // The four corners once each, in one Terrain::heights4 (the bits of four height() calls);
   // float(rad2deg(atan2(rise, run))), the same bits, mostly without libm (core/atan_float.hpp).
+  const Footing ft = footing(w, e, f);
+  double hts[4];
+  w.terrain.heights4(ft.x, ft.y, hts);
+  const Settle st = settle(ft, hts);
   float pitch, roll;  // (both at once: the same bits as one by one)
-  atan2_deg_float2(hf - hb, 2 * half_len, hl - hr, 2 * half_wid, pitch, roll);  // roll: right side down +
-  ents.pitch_deg[e] = pitch, ents.roll_deg[e] = roll;
+  atan2_deg_float2(st.rise[0], st.run[0], st.rise[1], st.run[1], pitch, roll);
+  seat(w, e, st.z, pitch, roll);
 }
 
 void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::Jobs* jobs, core::HeadingMemo* memo) {
@@ -255,7 +296,9 @@ void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::
     ToFollow batch[kFollowBatch];
     int batched = 0;
     auto follow_batch = [&] {
-      for (int b = 0; b < batched; ++b) follow_terrain_along(w, batch[b].e, batch[b].dir);
+      int b = 0;
+      for (; b + 1 < batched; b += 2) follow_terrain_two(w, batch[b].e, batch[b].dir, batch[b + 1].e, batch[b + 1].dir);
+      if (b < batched) follow_terrain_along(w, batch[b].e, batch[b].dir);
       batched = 0;
     };
     for (size_t e = e0; e < e1; ++e) {

@@ -69,7 +69,9 @@ TEST(Angles, Atan2DegFloatGivesTheBitsOfTheLibmExpression) {
   std::uniform_int_distribution<int> scale(0, 8);
   int checked = 0;
   double py = 0.25, px = 3.0;  // the last slope: paired with this one (atan2_deg_float2)
+  double hy[4] = {0.1, -0.02, 0.3, 0}, hx[4] = {2.0, 4.0, 1.5, 1};  // the last three, then this one
   auto check = [&](double y, double x) {
+    hy[3] = y, hx[3] = x;
     const float a = atan2_deg_float(y, x), b = libm(y, x);
     ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << y << " " << x;
     float p0, p1;
@@ -77,7 +79,14 @@ TEST(Angles, Atan2DegFloatGivesTheBitsOfTheLibmExpression) {
     const float b0 = libm(py, px);
     ASSERT_TRUE(std::memcmp(&p0, &b0, sizeof p0) == 0 && std::memcmp(&p1, &b, sizeof p1) == 0)
         << "pair " << py << " " << px << ", " << y << " " << x;
+    float q[4];  // the last three slopes and this one (atan2_deg_float4)
+    atan2_deg_float4(hy, hx, q);
+    for (int k = 0; k < 4; ++k) {
+      const float want = libm(hy[k], hx[k]);
+      ASSERT_EQ(std::memcmp(&q[k], &want, sizeof want), 0) << "four, lane " << k << ": " << hy[k] << " " << hx[k];
+    }
     py = y, px = x;
+    for (int k = 0; k < 3; ++k) hy[k] = hy[k + 1], hx[k] = hx[k + 1];
     ++checked;
   };
   // Terrain slopes (rise over a footprint of 1-12 m, down to 1e-8 m) and any ratio over 40 decades.
