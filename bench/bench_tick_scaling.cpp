@@ -37,8 +37,8 @@
 //   the tick's thread wakes the sleeping worker itself (~11 us at 500 vehicles).
 //   --pin C: the tick's thread runs on CPU C only (the pool's workers on any): on this machine
 //   the two CPUs are not alike (MachineProbe below), so an A/B compares like with like.
-//   --tick-s S: the simulated time a tick steps (default 0.1 s, the chart's and the committed
-//   CSV's; 0.0166666666667 is TARGETS.md's 60 Hz). The same tick counts whatever S.
+//   --tick-s S: the simulated time a tick steps, 0 < S <= 1 (default 0.1 s, the chart's and the
+//   committed CSV's; 0.0166666666667 is TARGETS.md's 60 Hz). The same tick counts whatever S.
 #include <pthread.h>
 #include <sched.h>
 #include <unistd.h>
