@@ -207,8 +207,8 @@ bool burn_fuel(world::World& w, int e, double speed_mps, double dt) {
 void follow_terrain(world::World& w, int e) { follow_terrain_along(w, e, heading_to_dir(w.ents.heading_deg[e])); }
 
 namespace {
-// A ground vehicle's terrain following in its parts, so that two vehicles' can go side by side
-// (follow_terrain_two): its footprint's corners; from their heights, its height and the rise and
+// A ground vehicle's terrain following in its parts, so that four vehicles' can go side by side
+// (follow_terrain_four): its footprint's corners; from their heights, its height and the rise and
 // run of its pitch and roll; those stored.
 struct Footing {
   double half_len, half_wid;
@@ -241,19 +241,22 @@ void seat(world::World& w, int e, double z, float pitch, float roll) {
   w.ents.pos[e].z() = z;
   w.ents.pitch_deg[e] = pitch, w.ents.roll_deg[e] = roll;
 }
-// Two vehicles' (e0 != e1) together, the same bits as one after the other: their heights' and
-// slopes' chains of divisions and loads side by side (one vehicle's chain is too long for the
-// core to overlap the next vehicle's with it: perf, 100,000 vehicles).
-void follow_terrain_two(world::World& w, int e0, const Vec2& f0, int e1, const Vec2& f1) {
-  const Footing a = footing(w, e0, f0), b = footing(w, e1, f1);
-  double ha[4], hb[4];
-  w.terrain.heights4(a.x, a.y, ha);
-  w.terrain.heights4(b.x, b.y, hb);
-  const Settle sa = settle(a, ha), sb = settle(b, hb);
-  float angle[4];
-  atan2_deg_float4({sa.rise[0], sa.rise[1], sb.rise[0], sb.rise[1]}, {sa.run[0], sa.run[1], sb.run[0], sb.run[1]}, angle);
-  seat(w, e0, sa.z, angle[0], angle[1]);
-  seat(w, e1, sb.z, angle[2], angle[3]);
+// Four vehicles' (all different) together, the same bits as one after the other: their heights'
+// and slopes' chains of divisions and loads side by side (one vehicle's chain is too long for the
+// core to overlap the next vehicle's with it: perf, 100,000 vehicles), the slopes two vehicles to
+// a vector.
+void follow_terrain_four(world::World& w, const ToFollow* v) {
+  Footing ft[4];
+  for (int i = 0; i < 4; ++i) ft[i] = footing(w, v[i].e, v[i].dir);
+  double h[4][4];
+  for (int i = 0; i < 4; ++i) w.terrain.heights4(ft[i].x, ft[i].y, h[i]);
+  Settle st[4];
+  for (int i = 0; i < 4; ++i) st[i] = settle(ft[i], h[i]);
+  float angle[2][4];
+  for (int i = 0; i < 4; i += 2)
+    atan2_deg_float4({st[i].rise[0], st[i].rise[1], st[i + 1].rise[0], st[i + 1].rise[1]},
+                     {st[i].run[0], st[i].run[1], st[i + 1].run[0], st[i + 1].run[1]}, angle[i / 2]);
+  for (int i = 0; i < 4; ++i) seat(w, v[i].e, st[i].z, angle[i / 2][2 * (i % 2)], angle[i / 2][2 * (i % 2) + 1]);
 }
 }  // namespace
 
@@ -290,15 +293,16 @@ void step(world::World& w, double dt, std::vector<GroundImpact>& impacts, core::
   constexpr size_t kPrefetchAhead = 8;
   // A range's ground vehicles follow the terrain kFollowBatch at a time, after their moves: one
   // vehicle's heights, slopes and angles are a long chain of dependent divisions and loads, and
-  // a few vehicles' chains side by side overlap (the same bits: each reads only its own pose).
+  // four vehicles' chains side by side overlap (follow_terrain_four; the same bits: each reads
+  // only its own pose).
   constexpr int kFollowBatch = 8;
   auto vehicles = [&](int c, size_t e0, size_t e1) {
     ToFollow batch[kFollowBatch];
     int batched = 0;
     auto follow_batch = [&] {
       int b = 0;
-      for (; b + 1 < batched; b += 2) follow_terrain_two(w, batch[b].e, batch[b].dir, batch[b + 1].e, batch[b + 1].dir);
-      if (b < batched) follow_terrain_along(w, batch[b].e, batch[b].dir);
+      for (; b + 3 < batched; b += 4) follow_terrain_four(w, batch + b);
+      for (; b < batched; ++b) follow_terrain_along(w, batch[b].e, batch[b].dir);
       batched = 0;
     };
     for (size_t e = e0; e < e1; ++e) {
