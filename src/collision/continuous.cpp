@@ -144,6 +144,8 @@ constexpr size_t kEntityGrain = 128, kPairGrain = 256, kPendingGrain = 4;
 // Ranges a thread (core/jobs.hpp), claimed as threads come free: the long entity pass, and the
 // pairs whose costs differ most (a pending pair's narrow phase: a sphere sweep or a mesh).
 constexpr int kEntityChunksPerThread = 4, kPairChunksPerThread = 4, kPendingChunksPerThread = 8;
+// A pending pair's bodies' sweeps, last read in the pair loop, asked of the cache kPendingAhead
+// pairs early (the pair loop's own look-ahead: pair_tests.cpp).
 constexpr size_t kPendingAhead = 4;
 // The entity pass writes each entity's Swept, tags and box, which the pair loop and the broad
 // phase read last tick on whichever thread had the pair: asked for kEntityAhead entities early.

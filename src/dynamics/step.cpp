@@ -208,15 +208,15 @@ void follow_terrain(world::World& w, int e) { follow_terrain_along(w, e, heading
 
 namespace {
 // A ground vehicle's terrain following in its parts, so that four vehicles' can go side by side
-// (follow_terrain_four): its footprint's corners; from their heights, its height and the rise and
-// run of its pitch and roll; those stored.
+// (follow_terrain_four): its footprint's corners; from their heights, its height and the rise of
+// its pitch and roll (over the footprint's length and width); those stored.
 struct Footing {
   double half_len, half_wid;
   double x[4], y[4];  // front right, front left, back right, back left
 };
 struct Settle {
   double z;
-  double rise[2], run[2];  // pitch (front up +), roll (right side down +)
+  double rise[2];  // pitch (front up +, over 2 half_len), roll (right side down +, over 2 half_wid)
 };
 Footing footing(const world::World& w, int e, const Vec2& f) {
   const auto& ents = w.ents;
@@ -232,10 +232,10 @@ Footing footing(const world::World& w, int e, const Vec2& f) {
   for (int i = 0; i < 4; ++i) ft.x[i] = p[i].x(), ft.y[i] = p[i].y();
   return ft;
 }
-Settle settle(const Footing& ft, const double (&hts)[4]) {
+Settle settle(const double (&hts)[4]) {
   const double fr = hts[0], fl = hts[1], br = hts[2], bl = hts[3];
   const double hf = 0.5 * (fr + fl), hb = 0.5 * (br + bl), hr = 0.5 * (fr + br), hl = 0.5 * (fl + bl);
-  return {0.25 * (hf + hb + hr + hl), {hf - hb, hl - hr}, {2 * ft.half_len, 2 * ft.half_wid}};
+  return {0.25 * (hf + hb + hr + hl), {hf - hb, hl - hr}};
 }
 void seat(world::World& w, int e, double z, float pitch, float roll) {
   w.ents.pos[e].z() = z;
@@ -251,11 +251,12 @@ void follow_terrain_four(world::World& w, const ToFollow* v) {
   double h[4][4];
   for (int i = 0; i < 4; ++i) w.terrain.heights4(ft[i].x, ft[i].y, h[i]);
   Settle st[4];
-  for (int i = 0; i < 4; ++i) st[i] = settle(ft[i], h[i]);
+  for (int i = 0; i < 4; ++i) st[i] = settle(h[i]);
   float angle[2][4];
   for (int i = 0; i < 4; i += 2)
     atan2_deg_float4({st[i].rise[0], st[i].rise[1], st[i + 1].rise[0], st[i + 1].rise[1]},
-                     {st[i].run[0], st[i].run[1], st[i + 1].run[0], st[i + 1].run[1]}, angle[i / 2]);
+                     {2 * ft[i].half_len, 2 * ft[i].half_wid, 2 * ft[i + 1].half_len, 2 * ft[i + 1].half_wid},
+                     angle[i / 2]);
   for (int i = 0; i < 4; ++i) seat(w, v[i].e, st[i].z, angle[i / 2][2 * (i % 2)], angle[i / 2][2 * (i % 2) + 1]);
 }
 }  // namespace
@@ -266,9 +267,9 @@ void follow_terrain_along(world::World& w, int e, const Vec2& f) {
   const Footing ft = footing(w, e, f);
   double hts[4];
   w.terrain.heights4(ft.x, ft.y, hts);
-  const Settle st = settle(ft, hts);
+  const Settle st = settle(hts);
   float pitch, roll;  // (both at once: the same bits as one by one)
-  atan2_deg_float2(st.rise[0], st.run[0], st.rise[1], st.run[1], pitch, roll);
+  atan2_deg_float2(st.rise[0], 2 * ft.half_len, st.rise[1], 2 * ft.half_wid, pitch, roll);
   seat(w, e, st.z, pitch, roll);
 }
 
